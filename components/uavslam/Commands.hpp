@@ -1,0 +1,24 @@
+// The subcommands of the `uavslam` tool. Each registers itself on the app; its callback sets the
+// process exit code (0 done, 1 failed, 130 stopped by Ctrl-C).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "core/SlamConfig.hpp"
+
+namespace uavslam::cli {
+
+void add_simulate_command(CLI::App& app, int& exit_code);
+void add_eval_command(CLI::App& app, int& exit_code);
+void add_sweep_command(CLI::App& app, int& exit_code);
+
+// --config FILE (optional; the seed's defaults otherwise) and then each --set key=value.
+SlamConfig load_config(const std::string& path, const std::vector<std::string>& overrides);
+
+// A one-line progress report on a terminal; nothing when stderr is not one.
+void report_progress(const char* what, std::size_t done, std::size_t total);
+
+}  // namespace uavslam::cli

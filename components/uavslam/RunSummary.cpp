@@ -1,0 +1,133 @@
+#include "RunSummary.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <ostream>
+
+namespace uavslam::cli {
+
+double RunSummary::real_time_factor() const {
+  return run->wall_seconds > 0.0 ? flight_seconds / run->wall_seconds : 0.0;
+}
+
+std::size_t RunSummary::accepted() const {
+  return run->outcomes[std::size_t(ScanOutcome::Accepted)] +
+         run->outcomes[std::size_t(ScanOutcome::MapInitialised)];
+}
+
+RunSummary summarize_run(const std::string& scenario, const SlamRun& run, double flight_seconds) {
+  RunSummary s;
+  s.scenario = scenario;
+  s.run = &run;
+  s.flight_seconds = flight_seconds;
+  std::vector<double> ms;
+  ms.reserve(run.scan_seconds.size());
+  for (double seconds : run.scan_seconds) ms.push_back(seconds * 1e3);
+  s.scan_ms = eval::summarize(ms);
+  try {
+    s.errors = eval::compare_trajectories(run.estimate, run.ground_truth);
+  } catch (const std::invalid_argument& e) {
+    s.errors_unavailable = e.what();
+  }
+  return s;
+}
+
+void print_errors(std::ostream& out, const eval::TrajectoryErrors& e) {
+  out << std::fixed << std::setprecision(4);
+  out << "  ATE RMSE          " << e.ate_rmse << " m (horizontal " << e.ate_horizontal_rmse
+      << " m, vertical " << e.ate_vertical_rmse << " m, max " << e.ate_max << " m) over " << e.pairs
+      << " poses\n";
+  out << "  RPE per " << std::setprecision(1) << e.rpe_delta << " s      " << std::setprecision(4)
+      << e.rpe_translation_rmse << " m, " << e.rpe_rotation_rmse_deg << " deg (RMSE over "
+      << e.rpe_pairs << " pairs)\n";
+  out << "  final position    " << e.final_position_error << " m off\n";
+}
+
+void print_summary(std::ostream& out, const RunSummary& s) {
+  const SlamRun& run = *s.run;
+  out << "uavslam simulate: " << s.scenario << (run.stopped_early ? " (stopped early)" : "")
+      << "\n";
+  out << "  scans             " << run.scans_in << " in, " << s.accepted() << " accepted, "
+      << run.scans_in - s.accepted() << " rejected";
+  std::string sep = " (";
+  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
+    const auto outcome = ScanOutcome(k);
+    if (outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised) continue;
+    if (run.outcomes[k] == 0) continue;
+    out << sep << to_string(outcome) << " " << run.outcomes[k];
+    sep = ", ";
+  }
+  out << (sep == ", " ? ")" : "") << "\n";
+  out << "  map               " << run.map.size() << " points from " << run.keyframes
+      << " keyframes\n";
+  if (s.errors) {
+    print_errors(out, *s.errors);
+  } else {
+    out << "  trajectory errors unavailable: " << s.errors_unavailable << "\n";
+  }
+  out << std::fixed << std::setprecision(3);
+  out << "  matcher time      " << s.scan_ms.mean << " ms/scan mean, p99 " << s.scan_ms.p99
+      << " ms, max " << s.scan_ms.max << " ms\n";
+  out << std::setprecision(2) << "  wall time         " << run.wall_seconds << " s for "
+      << s.flight_seconds << " s of flight (" << std::setprecision(1) << s.real_time_factor()
+      << "x real time)\n";
+}
+
+nlohmann::json to_json(const eval::TrajectoryErrors& e) {
+  return {{"pairs", e.pairs},
+          {"ate_rmse_m", e.ate_rmse},
+          {"ate_mean_m", e.ate_mean},
+          {"ate_max_m", e.ate_max},
+          {"ate_horizontal_rmse_m", e.ate_horizontal_rmse},
+          {"ate_vertical_rmse_m", e.ate_vertical_rmse},
+          {"rpe_delta_s", e.rpe_delta},
+          {"rpe_pairs", e.rpe_pairs},
+          {"rpe_translation_rmse_m", std::isfinite(e.rpe_translation_rmse)
+                                         ? nlohmann::json(e.rpe_translation_rmse)
+                                         : nlohmann::json()},
+          {"rpe_rotation_rmse_deg", std::isfinite(e.rpe_rotation_rmse_deg)
+                                        ? nlohmann::json(e.rpe_rotation_rmse_deg)
+                                        : nlohmann::json()},
+          {"final_position_error_m", e.final_position_error}};
+}
+
+nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
+  const SlamRun& run = *s.run;
+  nlohmann::json rejected = nlohmann::json::object();
+  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
+    const auto outcome = ScanOutcome(k);
+    if (outcome != ScanOutcome::Accepted && outcome != ScanOutcome::MapInitialised) {
+      rejected[to_string(outcome)] = run.outcomes[k];
+    }
+  }
+  nlohmann::json j;
+  j["scenario"] = s.scenario;
+  j["stopped_early"] = run.stopped_early;
+  j["scans"] = {{"in", run.scans_in},
+                {"accepted", s.accepted()},
+                {"rejected", run.scans_in - s.accepted()},
+                {"rejected_by_reason", rejected}};
+  j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
+  j["trajectory_errors"] = s.errors ? to_json(*s.errors) : nlohmann::json(s.errors_unavailable);
+  j["matcher_ms_per_scan"] = {{"mean", s.scan_ms.mean},
+                              {"p50", s.scan_ms.p50},
+                              {"p99", s.scan_ms.p99},
+                              {"max", s.scan_ms.max}};
+  j["wall_seconds"] = run.wall_seconds;
+  j["flight_seconds"] = s.flight_seconds;
+  j["real_time_factor"] = s.real_time_factor();
+  j["config"] = {{"subsample_every", config.scan.subsample_every},
+                 {"iterations", config.icp.iterations},
+                 {"max_translation", config.icp.max_translation},
+                 {"max_error_after", config.icp.max_error_after},
+                 {"max_error_ratio", config.icp.max_error_ratio},
+                 {"max_correspondence_distance", config.icp.max_correspondence_distance},
+                 {"index", config.nearest_neighbour.index},
+                 {"flann_trees", config.nearest_neighbour.flann_trees},
+                 {"flann_checks", config.nearest_neighbour.flann_checks},
+                 {"keyframe_height", config.map.keyframe_height},
+                 {"keyframe_lateral", config.map.keyframe_lateral}};
+  return j;
+}
+
+}  // namespace uavslam::cli

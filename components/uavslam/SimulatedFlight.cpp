@@ -1,0 +1,65 @@
+#include "SimulatedFlight.hpp"
+
+#include <chrono>
+
+#include "StopRequest.hpp"
+#include "sim/FlightSimulator.hpp"
+
+namespace uavslam::cli {
+
+SensorLog simulate_sensors(const sim::Scenario& scenario) {
+  sim::FlightSimulator simulator(scenario);
+  SensorLog log;
+  log.duration = simulator.end_time() - simulator.start_time();
+  ImuSample imu;
+  while (simulator.next_imu(imu)) log.imu.push_back(imu);
+  Scan scan;
+  while (simulator.next_scan(scan)) {
+    log.ground_truth.push_back(simulator.ground_truth_at(scan.stamp));
+    log.scans.push_back(std::move(scan));
+  }
+  return log;
+}
+
+SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
+                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  using Clock = std::chrono::steady_clock;
+  SlamRun run;
+  if (log.scans.empty()) return run;
+  // The vehicle starts where the flight starts: the estimate and the truth share a frame.
+  SlamPipeline slam(config, log.ground_truth.front().position);
+  std::size_t next_imu = 0;
+  const auto run_start = Clock::now();
+  for (std::size_t i = 0; i < log.scans.size(); ++i) {
+    if (stop_requested()) {
+      run.stopped_early = true;
+      break;
+    }
+    const Scan& scan = log.scans[i];
+    // Every IMU sample up to the scan's stamp arrives before the scan, as on the vehicle.
+    for (; next_imu < log.imu.size() && log.imu[next_imu].stamp <= scan.stamp; ++next_imu) {
+      slam.add_imu(log.imu[next_imu]);
+    }
+    const auto start = Clock::now();
+    const ScanReport report = slam.process_scan(scan);
+    run.scan_seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    ++run.scans_in;
+    if (report.accepted()) {
+      run.estimate.push_back(report.pose);
+      run.ground_truth.push_back(log.ground_truth[i]);
+    }
+    run.keyframes += report.map_updated;
+    run.trace.push_back({scan.stamp, report.outcome, report.points_used, report.error_before,
+                         report.error_after, report.iterations, report.map_updated,
+                         report.pose.position, log.ground_truth[i].position,
+                         run.scan_seconds.back() * 1e3});
+    if (progress && i % 400 == 0) progress(i, log.scans.size());
+  }
+  run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
+  run.outcomes = slam.outcome_counts();
+  run.map = slam.map().points();
+  if (progress) progress(run.scans_in, log.scans.size());
+  return run;
+}
+
+}  // namespace uavslam::cli

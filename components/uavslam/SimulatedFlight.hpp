@@ -1,0 +1,55 @@
+// A simulated flight recorded in memory, and the SLAM pipeline run over it in time order, as the
+// matcher process would receive it. Sensor simulation happens before the run, so the run's timing
+// is the pipeline's alone.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <vector>
+
+#include "core/SlamPipeline.hpp"
+#include "sim/Scenario.hpp"
+
+namespace uavslam::cli {
+
+struct SensorLog {
+  std::vector<ImuSample> imu;
+  std::vector<Scan> scans;
+  std::vector<Pose> ground_truth;  // the true body pose at each scan's stamp
+  double duration = 0.0;           // s of flight
+};
+
+SensorLog simulate_sensors(const sim::Scenario& scenario);
+
+// One scan's diagnostics, as the matcher_status topic will carry them.
+struct ScanTrace {
+  double stamp = 0.0;
+  ScanOutcome outcome = ScanOutcome::Malformed;
+  std::size_t points_used = 0;
+  double error_before = 0.0;
+  double error_after = 0.0;
+  int iterations = 0;
+  bool map_updated = false;
+  Vec3 position = Vec3::Zero();  // the estimate after this scan
+  Vec3 truth = Vec3::Zero();
+  double milliseconds = 0.0;
+};
+
+struct SlamRun {
+  std::vector<ScanTrace> trace;      // every scan
+  std::vector<Pose> estimate;        // one pose per accepted scan
+  std::vector<Pose> ground_truth;    // the truth at the same stamps
+  std::vector<double> scan_seconds;  // pipeline time of every scan
+  std::array<std::size_t, kScanOutcomeCount> outcomes{};
+  std::size_t scans_in = 0;
+  std::size_t keyframes = 0;
+  Points map;
+  double wall_seconds = 0.0;  // whole run, pipeline only
+  bool stopped_early = false;
+};
+
+// progress(done, total) is called now and then for long runs.
+SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
+                 const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+}  // namespace uavslam::cli

@@ -1,0 +1,36 @@
+// The nearest-neighbour search over the world map (step 1 of the seed's ICP), behind one interface
+// so the real-time FLANN search, the exact octree search of the offline mode and a brute-force
+// reference are interchangeable.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/SlamConfig.hpp"
+#include "core/Types.hpp"
+
+namespace uavslam {
+
+struct Neighbour {
+  std::size_t index = 0;          // into the points in the order they were added
+  double squared_distance = 0.0;  // m^2
+};
+
+class NearestNeighbourIndex {
+ public:
+  virtual ~NearestNeighbourIndex() = default;
+
+  // Appends points; indices of earlier points stay valid (the map only grows).
+  virtual void add_points(const Points& points) = 0;
+  virtual std::size_t size() const = 0;
+  // For each query the nearest indexed point; `nearest` is resized to queries.size().
+  virtual void find_nearest(const Points& queries, std::vector<Neighbour>& nearest) const = 0;
+};
+
+// "flann" (approximate kd-trees), "exact" (octree) or "brute" (every point; tests and benchmarks).
+std::unique_ptr<NearestNeighbourIndex> make_nearest_neighbour_index(
+    const SlamConfig::NearestNeighbour& config);
+
+}  // namespace uavslam

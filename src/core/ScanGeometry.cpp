@@ -1,0 +1,17 @@
+#include <cmath>
+
+#include "core/Types.hpp"
+
+namespace uavslam {
+
+ScanGeometry ScanGeometry::planar(double angle_min, double angle_increment, int beams) {
+  ScanGeometry g;
+  g.directions.reserve(static_cast<std::size_t>(beams));
+  for (int i = 0; i < beams; ++i) {
+    const double a = angle_min + i * angle_increment;
+    g.directions.emplace_back(std::cos(a), std::sin(a), 0.0);
+  }
+  return g;
+}
+
+}  // namespace uavslam

@@ -1,0 +1,127 @@
+#include "core/ScanMatcher.hpp"
+
+namespace uavslam {
+
+ScanPoints weigh_points(Points points, const std::vector<bool>& vertical, bool split_axes) {
+  ScanPoints scan;
+  scan.weights.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!split_axes) {
+      scan.weights.emplace_back(1.0, 1.0, 1.0);
+    } else {
+      scan.weights.push_back(vertical[i] ? Vec3(0.0, 0.0, 1.0) : Vec3(1.0, 1.0, 0.0));
+    }
+  }
+  scan.points = std::move(points);
+  return scan;
+}
+
+Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
+                                    double max_distance) {
+  std::vector<Neighbour> nearest;
+  map.find_nearest(scan.points, nearest);
+  const double max_squared = max_distance * max_distance;
+  Correspondences pairs;
+  pairs.scan.reserve(scan.points.size());
+  pairs.map.reserve(scan.points.size());
+  pairs.weights.reserve(scan.points.size());
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    const Vec3& m = scan.points[i];
+    const Vec3& d = map.point(nearest[i].index);
+    const Vec3& w = scan.weights[i];
+    if (max_distance > 0.0 && w.dot((m - d).cwiseAbs2()) > max_squared) continue;
+    pairs.scan.push_back(m);
+    pairs.map.push_back(d);
+    pairs.weights.push_back(w);
+  }
+  return pairs;
+}
+
+Vec3 best_translation(const Correspondences& pairs) {
+  Vec3 weighted_sum = Vec3::Zero();
+  Vec3 weight_total = Vec3::Zero();
+  for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
+    weighted_sum += pairs.weights[i].cwiseProduct(pairs.scan[i] - pairs.map[i]);
+    weight_total += pairs.weights[i];
+  }
+  Vec3 t = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    if (weight_total[k] > 0.0) t[k] = weighted_sum[k] / weight_total[k];
+  }
+  return t;
+}
+
+double error_function(const Correspondences& pairs, const Vec3& t) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
+    sum += pairs.weights[i].dot((pairs.scan[i] - (pairs.map[i] + t)).cwiseAbs2());
+  }
+  return sum / double(pairs.scan.size());
+}
+
+void apply_transform(Points& points, const Vec3& correction) {
+  for (Vec3& p : points) p += correction;
+}
+
+std::string to_string(MatchOutcome outcome) {
+  switch (outcome) {
+    case MatchOutcome::Accepted:
+      return "accepted";
+    case MatchOutcome::NoCorrespondences:
+      return "no_correspondences";
+    case MatchOutcome::TranslationTooLarge:
+      return "translation_too_large";
+    case MatchOutcome::ErrorTooLarge:
+      return "error_too_large";
+    case MatchOutcome::ErrorIncreased:
+      return "error_increased";
+  }
+  return "unknown";
+}
+
+ScanMatcher::ScanMatcher(const SlamConfig::Icp& config) : config_(config) {}
+
+MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan,
+                               const Vec3& initial) const {
+  MatchResult result;
+  result.position = initial;
+  ScanPoints moving = scan;
+  apply_transform(moving.points, initial);
+  const double max_distance = config_.max_correspondence_distance;
+
+  // Find initial error: the pairs found here also serve the first iteration.
+  Correspondences pairs = find_nearest_points(map, moving, max_distance);
+  if (pairs.empty()) return result;
+  result.error_before = error_function(pairs);
+
+  for (int k = 0; k < config_.iterations; ++k) {
+    if (k > 0) pairs = find_nearest_points(map, moving, max_distance);
+    if (pairs.empty()) return result;
+    const Vec3 t = best_translation(pairs);
+    apply_transform(moving.points, -t);
+    result.correction -= t;
+    result.iterations = k + 1;
+    if (result.correction.norm() > config_.max_translation) {
+      result.outcome = MatchOutcome::TranslationTooLarge;
+      return result;
+    }
+  }
+  result.position = initial + result.correction;
+
+  // Calculate resultant error.
+  pairs = find_nearest_points(map, moving, max_distance);
+  if (pairs.empty()) return result;
+  result.error_after = error_function(pairs);
+  result.correspondences = pairs.scan.size();
+  result.aligned = std::move(moving.points);
+  if (result.error_after > config_.max_error_after) {
+    result.outcome = MatchOutcome::ErrorTooLarge;
+  } else if (result.error_after > config_.max_error_ratio * result.error_before) {
+    result.outcome = MatchOutcome::ErrorIncreased;
+  } else {
+    result.outcome = MatchOutcome::Accepted;
+  }
+  return result;
+}
+
+}  // namespace uavslam

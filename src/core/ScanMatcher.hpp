@@ -1,0 +1,84 @@
+// The seed's translation-only ICP (thesis ch. 5.4.3.1, Figure 5.15): the scan's rotation comes from
+// the orientation source, the matcher finds only where the scan sits in the world map.
+//
+//   error before (eq. 5.18) -> [find nearest points -> best translation (eq. 5.16) -> apply]
+//   x a fixed number of iterations (stop if the correction grows erroneously large)
+//   -> error after (eq. 5.18) -> accept or skip the scan
+//
+// Each pair carries the weights omega of eq. 5.17, one per axis. The seed weighs uniformly (1 on
+// every axis); with split axes a level beam's pair informs only x-y and a floor beam's only z.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/SlamConfig.hpp"
+#include "core/WorldMap.hpp"
+
+namespace uavslam {
+
+// The scan points m_i that take part, each with its per-axis weight omega_i (0 or 1 per axis).
+struct ScanPoints {
+  Points points;
+  std::vector<Vec3> weights;
+};
+
+// Uniform weights (the seed) or split ones (level beams x-y, vertical beams z).
+ScanPoints weigh_points(Points points, const std::vector<bool>& vertical, bool split_axes);
+
+// The scan points m_i and their nearest map points d_i, as weighted pairs.
+struct Correspondences {
+  Points scan;  // m_i
+  Points map;   // d_i
+  std::vector<Vec3> weights;
+  bool empty() const { return scan.empty(); }
+};
+
+// Step 1: pair each scan point with its nearest map point; pairs whose weighted distance exceeds
+// max_distance get omega = 0 and are left out (max_distance <= 0: keep all, as the seed does).
+Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
+                                    double max_distance);
+
+// Step 2, eq. 5.16 per axis k: t_k = sum_i w_ik (m_ik - d_ik) / sum_i w_ik, the weighted
+// difference of the means c_m - c_d; 0 on an axis no pair informs. It minimises E(t).
+Vec3 best_translation(const Correspondences& pairs);
+
+// Eq. 5.18: E(t) = (1/N) sum_i sum_k w_ik (m_ik - (d_ik + t_k))^2, the mean squared distance.
+double error_function(const Correspondences& pairs, const Vec3& t = Vec3::Zero());
+
+// Move the points by the correction (the scan onto the map: -t).
+void apply_transform(Points& points, const Vec3& correction);
+
+enum class MatchOutcome {
+  Accepted,
+  NoCorrespondences,    // no scan point had a map point near enough
+  TranslationTooLarge,  // accumulated correction beyond icp.max_translation (step 3)
+  ErrorTooLarge,        // error after above icp.max_error_after (step 4)
+  ErrorIncreased,       // error after above icp.max_error_ratio * error before (step 4)
+};
+std::string to_string(MatchOutcome outcome);
+
+struct MatchResult {
+  MatchOutcome outcome = MatchOutcome::NoCorrespondences;
+  Vec3 position = Vec3::Zero();    // the body position the scan was aligned to
+  Vec3 correction = Vec3::Zero();  // position - initial position
+  double error_before = 0.0;       // m^2
+  double error_after = 0.0;        // m^2
+  int iterations = 0;
+  std::size_t correspondences = 0;  // pairs in the final error
+  Points aligned;                   // the scan's points in the world frame at `position`
+};
+
+class ScanMatcher {
+ public:
+  explicit ScanMatcher(const SlamConfig::Icp& config);
+
+  // scan: world-oriented points relative to the body origin; initial: the body position to start
+  // from (the last position: the seed uses no motion model).
+  MatchResult match(const WorldMap& map, const ScanPoints& scan, const Vec3& initial) const;
+
+ private:
+  SlamConfig::Icp config_;
+};
+
+}  // namespace uavslam

@@ -1,0 +1,77 @@
+// The whole real-time SLAM of the seed for one vehicle, scan by scan (thesis Figure 5.15):
+// orientation from the IMU at the scan's time, translation from the scan matcher against the
+// world map, keyframes into the map after enough motion. The matcher process and the offline
+// tools run this same object; it knows nothing of DDS, files or clocks.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "core/ImuBuffer.hpp"
+#include "core/ScanMatcher.hpp"
+#include "core/SlamConfig.hpp"
+#include "core/WorldMap.hpp"
+
+namespace uavslam {
+
+enum class ScanOutcome {
+  Accepted,
+  MapInitialised,  // the first scan seeds the map
+  Malformed,       // no geometry, range count differs from the geometry, or a bad stamp
+  NoImu,           // no orientation sample near the scan's time
+  TooFewPoints,    // fewer valid points than the matcher needs
+  NoCorrespondences,
+  TranslationTooLarge,
+  ErrorTooLarge,
+  ErrorIncreased,
+};
+constexpr std::size_t kScanOutcomeCount = 9;
+std::string to_string(ScanOutcome outcome);
+
+struct ScanReport {
+  ScanOutcome outcome = ScanOutcome::Malformed;
+  Pose pose;                    // the vehicle's pose after this scan (unchanged if rejected)
+  std::size_t points_used = 0;  // after subsampling
+  std::size_t invalid_ranges = 0;
+  double error_before = 0.0;  // m^2, eq. 5.18
+  double error_after = 0.0;   // m^2
+  int iterations = 0;
+  bool map_updated = false;  // this scan was a keyframe
+  std::size_t map_size = 0;
+  Points added_points;  // what this scan added to the map (empty unless map_updated)
+
+  bool accepted() const {
+    return outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised;
+  }
+};
+
+class SlamPipeline {
+ public:
+  // initial_position: where the body is when the first scan arrives (e.g. the take-off point).
+  explicit SlamPipeline(const SlamConfig& config, const Vec3& initial_position = Vec3::Zero());
+
+  void add_imu(const ImuSample& sample);
+  ScanReport process_scan(const Scan& scan);
+
+  const WorldMap& map() const { return map_; }
+  const Pose& pose() const { return pose_; }
+  const SlamConfig& config() const { return config_; }
+  // How many scans ended in each outcome, indexed by ScanOutcome.
+  const std::array<std::size_t, kScanOutcomeCount>& outcome_counts() const { return counts_; }
+  std::size_t rejected_imu_samples() const { return imu_.rejected(); }
+
+ private:
+  ScanReport finish(ScanReport report);
+  bool moved_enough_for_map_update(const Vec3& position) const;
+  void add_to_map(ScanReport& report, const Points& projected);
+
+  SlamConfig config_;
+  ImuBuffer imu_;
+  WorldMap map_;
+  ScanMatcher matcher_;
+  Pose pose_;
+  Vec3 last_map_update_position_ = Vec3::Zero();
+  std::array<std::size_t, kScanOutcomeCount> counts_{};
+};
+
+}  // namespace uavslam

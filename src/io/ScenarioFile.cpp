@@ -1,0 +1,159 @@
+#include "io/ScenarioFile.hpp"
+
+#include <filesystem>
+#include <sstream>
+
+#include "io/YamlReader.hpp"
+#include "sim/World.hpp"
+
+namespace uavslam::io {
+
+namespace {
+
+std::string shown(const Vec3& v) {
+  std::ostringstream text;
+  text << "[" << v.x() << ", " << v.y() << ", " << v.z() << "]";
+  return text.str();
+}
+
+sim::Box read_box(const YamlReader& reader) {
+  reader.expect_keys_only({"min", "max"});
+  sim::Box box;
+  box.min = reader.get_vec3("min");
+  box.max = reader.get_vec3("max");
+  if (!(box.min.array() < box.max.array()).all()) {
+    reader.fail("expected min < max on every axis, got min " + shown(box.min) + " and max " +
+                shown(box.max));
+  }
+  return box;
+}
+
+sim::Cylinder read_cylinder(const YamlReader& reader) {
+  reader.expect_keys_only({"center", "radius", "z"});
+  sim::Cylinder cylinder;
+  cylinder.center = reader.at("center").as_vec2();
+  cylinder.radius = reader.get_double("radius", NumberRange::positive());
+  const YamlReader z_range = reader.at("z");
+  const Eigen::Vector2d z = z_range.as_vec2();
+  if (!(z.x() < z.y())) z_range.fail_expected("[z0, z1] with z0 < z1");
+  cylinder.z0 = z.x();
+  cylinder.z1 = z.y();
+  return cylinder;
+}
+
+sim::WorldSpec read_world(const YamlReader& reader) {
+  reader.expect_keys_only({"room", "boxes", "cylinders"});
+  sim::WorldSpec world;
+  world.room = read_box(reader.at("room"));
+  if (const auto boxes = reader.find("boxes")) {
+    for (const YamlReader& box : boxes->elements()) world.boxes.push_back(read_box(box));
+  }
+  if (const auto cylinders = reader.find("cylinders")) {
+    for (const YamlReader& cylinder : cylinders->elements()) {
+      world.cylinders.push_back(read_cylinder(cylinder));
+    }
+  }
+  return world;
+}
+
+sim::Waypoint read_waypoint(const YamlReader& reader, const sim::World& world) {
+  reader.expect_keys_only({"t", "position", "yaw_deg"});
+  sim::Waypoint waypoint;
+  waypoint.t = reader.get_double("t");
+  const YamlReader position = reader.at("position");
+  waypoint.position = position.as_vec3();
+  if (!world.is_free(waypoint.position)) {
+    position.fail_expected("a point inside the room and outside every obstacle");
+  }
+  waypoint.yaw_deg = reader.get_double_or("yaw_deg", 0.0);
+  return waypoint;
+}
+
+std::vector<sim::Waypoint> read_waypoints(const YamlReader& reader, const sim::World& world) {
+  reader.expect_keys_only({"waypoints"});
+  const YamlReader list = reader.at("waypoints");
+  std::vector<sim::Waypoint> waypoints;
+  for (const YamlReader& item : list.elements()) {
+    waypoints.push_back(read_waypoint(item, world));
+    const std::size_t n = waypoints.size();
+    if (n >= 2 && !(waypoints[n - 1].t > waypoints[n - 2].t)) {
+      std::ostringstream expected;
+      expected << "a time after the previous waypoint's " << waypoints[n - 2].t;
+      item.at("t").fail_expected(expected.str());
+    }
+  }
+  if (waypoints.size() < 2) list.fail_expected("a list of at least 2 waypoints");
+  return waypoints;
+}
+
+sim::FloorMirrorSpec read_floor_mirror(const YamlReader& reader, int beams) {
+  reader.expect_keys_only({"beams", "spread_deg"});
+  sim::FloorMirrorSpec mirror;
+  mirror.beams =
+      reader.get_int_or("beams", mirror.beams, NumberRange::between(0, static_cast<double>(beams)));
+  mirror.spread_deg =
+      reader.get_double_or("spread_deg", mirror.spread_deg, NumberRange::between(0.0, 180.0));
+  return mirror;
+}
+
+void read_mount(const YamlReader& reader, sim::LidarSpec& lidar) {
+  reader.expect_keys_only({"position", "rpy_deg"});
+  lidar.mount_position = reader.get_vec3_or("position", lidar.mount_position);
+  lidar.mount_rpy_deg = reader.get_vec3_or("rpy_deg", lidar.mount_rpy_deg);
+}
+
+sim::LidarSpec read_lidar(const YamlReader& reader) {
+  reader.expect_keys_only({"beams", "fov_deg", "rate_hz", "min_range", "max_range",
+                           "range_noise_std", "mount", "floor_mirror", "rings",
+                           "vertical_fov_deg"});
+  sim::LidarSpec lidar;
+  lidar.beams = reader.get_int_or("beams", lidar.beams, NumberRange::at_least(1));
+  lidar.fov_deg = reader.get_double_or("fov_deg", lidar.fov_deg, {0.0, 360.0, true});
+  lidar.rate_hz = reader.get_double_or("rate_hz", lidar.rate_hz, NumberRange::positive());
+  lidar.min_range = reader.get_double_or("min_range", lidar.min_range, NumberRange::non_negative());
+  lidar.max_range = reader.get_double_or("max_range", lidar.max_range,
+                                         NumberRange::greater_than(lidar.min_range));
+  lidar.range_noise_std =
+      reader.get_double_or("range_noise_std", lidar.range_noise_std, NumberRange::non_negative());
+  if (const auto mount = reader.find("mount")) read_mount(*mount, lidar);
+  if (const auto mirror = reader.find("floor_mirror")) {
+    lidar.floor_mirror = read_floor_mirror(*mirror, lidar.beams);
+  }
+  lidar.rings = reader.get_int_or("rings", lidar.rings, NumberRange::at_least(1));
+  lidar.vertical_fov_deg = reader.get_double_or("vertical_fov_deg", lidar.vertical_fov_deg,
+                                                NumberRange::between(0.0, 180.0));
+  return lidar;
+}
+
+sim::ImuSpec read_imu(const YamlReader& reader) {
+  reader.expect_keys_only({"rate_hz", "orientation_noise_std_deg", "yaw_drift_deg_per_min",
+                           "gyro_noise_std", "accel_noise_std"});
+  sim::ImuSpec imu;
+  imu.rate_hz = reader.get_double_or("rate_hz", imu.rate_hz, NumberRange::positive());
+  imu.orientation_noise_std_deg = reader.get_double_or(
+      "orientation_noise_std_deg", imu.orientation_noise_std_deg, NumberRange::non_negative());
+  imu.yaw_drift_deg_per_min =
+      reader.get_double_or("yaw_drift_deg_per_min", imu.yaw_drift_deg_per_min);
+  imu.gyro_noise_std =
+      reader.get_double_or("gyro_noise_std", imu.gyro_noise_std, NumberRange::non_negative());
+  imu.accel_noise_std =
+      reader.get_double_or("accel_noise_std", imu.accel_noise_std, NumberRange::non_negative());
+  return imu;
+}
+
+}  // namespace
+
+sim::Scenario load_scenario(const std::string& path) {
+  const YamlReader root = YamlReader::from_file(path, "scenario");
+  root.expect_keys_only({"name", "seed", "world", "trajectory", "lidar", "imu"});
+  sim::Scenario scenario;
+  scenario.name = root.get_string_or("name", std::filesystem::path(path).stem().string());
+  scenario.seed = root.get_uint64_or("seed", scenario.seed);
+  scenario.world = read_world(root.at("world"));
+  scenario.waypoints = read_waypoints(root.at("trajectory"), sim::World(scenario.world));
+  if (const auto lidar = root.find("lidar")) scenario.lidar = read_lidar(*lidar);
+  if (const auto imu = root.find("imu")) scenario.imu = read_imu(*imu);
+  return scenario;
+}
+
+}  // namespace uavslam::io

@@ -1,0 +1,137 @@
+#include "io/SlamConfigFile.hpp"
+
+#include <vector>
+
+#include "io/YamlReader.hpp"
+
+namespace uavslam::io {
+
+namespace {
+
+// One settable parameter: where it lives in the file and how its value is checked and stored.
+// The file loader and the command-line override share this table, so they cannot disagree.
+struct Parameter {
+  const char* section;
+  const char* key;
+  void (*set)(SlamConfig&, const YamlReader& value);
+
+  std::string path() const { return std::string(section) + "." + key; }
+};
+
+const std::vector<Parameter>& parameters() {
+  static const std::vector<Parameter> table = {
+      {"scan", "subsample_every",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.scan.subsample_every = v.as_int(NumberRange::at_least(1));
+       }},
+      {"icp", "iterations",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.iterations = v.as_int(NumberRange::at_least(1));
+       }},
+      {"icp", "max_translation",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.max_translation = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "max_error_after",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.max_error_after = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "max_error_ratio",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.max_error_ratio = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "max_correspondence_distance",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.max_correspondence_distance = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "split_axes",
+       [](SlamConfig& c, const YamlReader& v) { c.icp.split_axes = v.as_bool(); }},
+      {"nearest_neighbour", "index",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.nearest_neighbour.index = v.as_choice({"flann", "exact", "brute"});
+       }},
+      {"nearest_neighbour", "flann_trees",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.nearest_neighbour.flann_trees = v.as_int(NumberRange::at_least(1));
+       }},
+      {"nearest_neighbour", "flann_checks",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.nearest_neighbour.flann_checks = v.as_int(NumberRange::at_least(1));
+       }},
+      {"map", "subsample_every",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.map.subsample_every = v.as_int(NumberRange::at_least(1));
+       }},
+      {"map", "keyframe_height",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.map.keyframe_height = v.as_double(NumberRange::non_negative());
+       }},
+      {"map", "keyframe_lateral",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.map.keyframe_lateral = v.as_double(NumberRange::non_negative());
+       }},
+      {"imu", "max_gap",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.imu.max_gap = v.as_double(NumberRange::positive());
+       }},
+  };
+  return table;
+}
+
+std::vector<std::string> section_names() {
+  std::vector<std::string> names;
+  for (const Parameter& p : parameters()) {
+    if (names.empty() || names.back() != p.section) names.emplace_back(p.section);
+  }
+  return names;
+}
+
+std::vector<std::string> key_names(const std::string& section) {
+  std::vector<std::string> names;
+  for (const Parameter& p : parameters()) {
+    if (section == p.section) names.emplace_back(p.key);
+  }
+  return names;
+}
+
+std::vector<std::string> parameter_paths() {
+  std::vector<std::string> paths;
+  for (const Parameter& p : parameters()) paths.push_back(p.path());
+  return paths;
+}
+
+}  // namespace
+
+SlamConfig load_slam_config(const std::string& path) {
+  const YamlReader root = YamlReader::from_file(path, "SLAM config");
+  root.expect_keys_only(section_names());
+  for (const std::string& section : section_names()) {
+    if (const auto reader = root.find(section)) reader->expect_keys_only(key_names(section));
+  }
+  SlamConfig config;
+  for (const Parameter& p : parameters()) {
+    const auto section = root.find(p.section);
+    if (!section) continue;
+    if (const auto value = section->find(p.key)) p.set(config, *value);
+  }
+  return config;
+}
+
+void apply_slam_config_override(SlamConfig& config, const std::string& assignment) {
+  const std::string source = "--set '" + assignment + "'";
+  const std::size_t equals = assignment.find('=');
+  if (equals == std::string::npos) {
+    throw ConfigError(source + ": expected section.key=value, e.g. icp.iterations=12");
+  }
+  const std::string path = assignment.substr(0, equals);
+  for (const Parameter& p : parameters()) {
+    if (p.path() != path) continue;
+    p.set(config, YamlReader::from_text(assignment.substr(equals + 1), source, path));
+    return;
+  }
+  std::string known;
+  for (const std::string& name : parameter_paths()) known += (known.empty() ? "" : ", ") + name;
+  throw ConfigError(source + ": unknown key '" + path + "' (known keys: " + known + ")");
+}
+
+}  // namespace uavslam::io

@@ -1,0 +1,122 @@
+#include "io/TumFile.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <memory>
+#include <string_view>
+
+namespace uavslam::io {
+namespace {
+
+constexpr const char* kFieldNames[8] = {"t", "x", "y", "z", "qx", "qy", "qz", "qw"};
+constexpr std::size_t kShownTextLength = 80;  // longer offending lines are cut in messages
+
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+
+std::string quoted(std::string_view text) {
+  if (text.size() > kShownTextLength)
+    return "'" + std::string(text.substr(0, kShownTextLength)) + "...'";
+  return "'" + std::string(text) + "'";
+}
+
+// The text before a '#', as evo (numpy.loadtxt comments="#") reads it.
+std::string_view without_comment(std::string_view line) {
+  return line.substr(0, line.find('#'));
+}
+
+std::vector<std::string_view> split_on_whitespace(std::string_view text) {
+  constexpr std::string_view kWhitespace = " \t\r\v\f";
+  std::vector<std::string_view> fields;
+  std::size_t begin = text.find_first_not_of(kWhitespace);
+  while (begin != std::string_view::npos) {
+    const std::size_t end = std::min(text.find_first_of(kWhitespace, begin), text.size());
+    fields.push_back(text.substr(begin, end - begin));
+    begin = text.find_first_not_of(kWhitespace, end);
+  }
+  return fields;
+}
+
+// from_chars is locale independent, so "1.5" parses the same whatever the user's locale.
+bool parse_finite(std::string_view text, double& value) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  return error == std::errc() && stop == end && std::isfinite(value);
+}
+
+Pose parse_pose_line(const std::string& path, std::size_t line_number, std::string_view line) {
+  const std::vector<std::string_view> fields = split_on_whitespace(without_comment(line));
+  if (fields.size() != 8) {
+    throw line_error(path, line_number,
+                     "expected 8 numbers 't x y z qx qy qz qw', got " +
+                         std::to_string(fields.size()) + ": " + quoted(line));
+  }
+  double values[8];
+  for (std::size_t i = 0; i < 8; ++i) {
+    if (!parse_finite(fields[i], values[i])) {
+      throw line_error(path, line_number,
+                       quoted(fields[i]) + " is not a finite number (field " + kFieldNames[i] +
+                           ") in " + quoted(line));
+    }
+  }
+  Pose pose;
+  pose.stamp = values[0];
+  pose.position = Vec3(values[1], values[2], values[3]);
+  // Eigen's constructor order is (w, x, y, z); the file's is qx qy qz qw.
+  pose.orientation = Eigen::Quaterniond(values[7], values[4], values[5], values[6]);
+  if (pose.orientation.norm() == 0.0) {
+    throw line_error(path, line_number, "zero quaternion is not a rotation: " + quoted(line));
+  }
+  pose.orientation.normalize();
+  return pose;
+}
+
+bool is_blank(std::string_view text) {
+  return split_on_whitespace(text).empty();
+}
+
+}  // namespace
+
+void write_tum(const std::string& path, const std::vector<Pose>& poses) {
+  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "w"));
+  if (!file) throw file_error(path, std::string("cannot write: ") + std::strerror(errno));
+  std::fprintf(file.get(), "# t x y z qx qy qz qw\n");
+  for (const Pose& pose : poses) {
+    const Vec3& p = pose.position;
+    const Eigen::Quaterniond& q = pose.orientation;
+    std::fprintf(file.get(), "%.9f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", pose.stamp, p.x(), p.y(),
+                 p.z(), q.x(), q.y(), q.z(), q.w());
+  }
+  // A full disk shows up only when the buffer is flushed, so check the close too.
+  const bool write_failed = std::ferror(file.get()) != 0;
+  const int close_result = std::fclose(file.release());
+  if (write_failed || close_result != 0) {
+    throw file_error(path, std::string("cannot write: ") + std::strerror(errno));
+  }
+}
+
+std::vector<Pose> read_tum(const std::string& path) {
+  errno = 0;
+  std::ifstream file(path);
+  if (!file) {
+    const char* reason = errno != 0 ? std::strerror(errno) : "unknown error";
+    throw file_error(path, std::string("cannot open: ") + reason);
+  }
+  std::vector<Pose> poses;
+  std::string line;
+  for (std::size_t line_number = 1; std::getline(file, line); ++line_number) {
+    if (is_blank(without_comment(line))) continue;
+    poses.push_back(parse_pose_line(path, line_number, line));
+  }
+  if (file.bad()) throw file_error(path, "read error");
+  return poses;
+}
+
+}  // namespace uavslam::io

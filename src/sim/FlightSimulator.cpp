@@ -1,0 +1,28 @@
+#include "sim/FlightSimulator.hpp"
+
+namespace uavslam::sim {
+
+FlightSimulator::FlightSimulator(const Scenario& scenario)
+    : world_(std::make_unique<const World>(scenario.world)),
+      trajectory_(scenario.waypoints),
+      lidar_(scenario.lidar, *world_, scenario.seed),
+      imu_(scenario.imu, scenario.seed),
+      scan_clock_(trajectory_.start_time(), trajectory_.end_time(), scenario.lidar.rate_hz),
+      imu_clock_(trajectory_.start_time(), trajectory_.end_time(), scenario.imu.rate_hz) {}
+
+bool FlightSimulator::next_scan(Scan& out) {
+  if (next_scan_index_ >= scan_clock_.count()) return false;
+  const double stamp = scan_clock_.stamp(next_scan_index_);
+  out = lidar_.scan_at(trajectory_.pose_at(stamp), stamp, next_scan_index_);
+  ++next_scan_index_;
+  return true;
+}
+
+bool FlightSimulator::next_imu(ImuSample& out) {
+  if (next_imu_index_ >= imu_clock_.count()) return false;
+  out = imu_.sample_at(trajectory_, imu_clock_.stamp(next_imu_index_));
+  ++next_imu_index_;
+  return true;
+}
+
+}  // namespace uavslam::sim

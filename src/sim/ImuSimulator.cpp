@@ -1,0 +1,52 @@
+#include "sim/ImuSimulator.hpp"
+
+#include "sim/Angles.hpp"
+#include "sim/SeedMixing.hpp"
+
+namespace uavslam::sim {
+
+namespace {
+
+// The rotation exp(v) of a rotation vector v (axis * angle).
+Eigen::Quaterniond rotation_from_vector(const Vec3& v) {
+  const double angle = v.norm();
+  if (angle == 0.0) return Eigen::Quaterniond::Identity();
+  return Eigen::Quaterniond(Eigen::AngleAxisd(angle, v / angle));
+}
+
+}  // namespace
+
+ImuSimulator::ImuSimulator(const ImuSpec& spec, std::uint64_t seed)
+    : spec_(spec), random_(mix_seed(seed, kImuStream)) {}
+
+Vec3 ImuSimulator::standard_normal_vector() {
+  // Separate statements: the order of evaluation inside one expression is unspecified.
+  const double x = standard_normal_(random_);
+  const double y = standard_normal_(random_);
+  const double z = standard_normal_(random_);
+  return {x, y, z};
+}
+
+ImuSample ImuSimulator::sample_at(const Trajectory& trajectory, double t) {
+  const Pose truth = trajectory.pose_at(t);
+  const double minutes = (truth.stamp - trajectory.start_time()) / 60.0;
+  // Heading drift turns the reported attitude about the world vertical.
+  const Eigen::Quaterniond drift(
+      Eigen::AngleAxisd(deg_to_rad(spec_.yaw_drift_deg_per_min * minutes), Vec3::UnitZ()));
+  const Vec3 attitude_noise =
+      deg_to_rad(spec_.orientation_noise_std_deg) * standard_normal_vector();
+  const Vec3 gyro_noise = spec_.gyro_noise_std * standard_normal_vector();
+  const Vec3 accel_noise = spec_.accel_noise_std * standard_normal_vector();
+
+  ImuSample sample;
+  sample.stamp = t;
+  sample.orientation =
+      (drift * truth.orientation * rotation_from_vector(attitude_noise)).normalized();
+  sample.angular_velocity = trajectory.angular_velocity_at(t) + gyro_noise;
+  // An accelerometer measures specific force: what the thrust does beyond cancelling gravity.
+  const Vec3 specific_force_world = trajectory.acceleration_at(t) + kGravity * Vec3::UnitZ();
+  sample.linear_acceleration = truth.orientation.conjugate() * specific_force_world + accel_noise;
+  return sample;
+}
+
+}  // namespace uavslam::sim

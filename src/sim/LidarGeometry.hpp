@@ -1,0 +1,20 @@
+// The beam layout of a simulated LiDAR: a planar scanner, optionally with a floor mirror, or a
+// multi-ring scanner, mounted on the body.
+#pragma once
+
+#include <memory>
+
+#include "core/Types.hpp"
+#include "sim/Scenario.hpp"
+
+namespace uavslam::sim {
+
+// Planar: beams over fov_deg centred on the sensor x axis. With floor_mirror.beams > 0 the first
+// beams fan downwards in the vertical plane of the first beam's azimuth. With rings > 1:
+// beams x rings directions, ring-major, elevations evenly over +-vertical_fov/2 (no mirror).
+std::shared_ptr<const ScanGeometry> make_scan_geometry(const LidarSpec& spec);
+
+// Sensor frame -> body frame from mount_position and mount_rpy_deg (R = Rz * Ry * Rx).
+Eigen::Isometry3d lidar_mount(const LidarSpec& spec);
+
+}  // namespace uavslam::sim

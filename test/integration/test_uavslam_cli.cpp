@@ -1,0 +1,155 @@
+// The `uavslam` tool end to end: it is run as a user would, on the shipped scenarios and config,
+// and its files are read back with the project's own readers.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/PlyFile.hpp"
+#include "io/TumFile.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CommandResult run(const std::string& arguments) {
+  const std::string command = std::string(UAVSLAM_BINARY) + " " + arguments + " 2>&1";
+  CommandResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) result.output += buffer;
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string source(const std::string& relative) {
+  return std::string(UAVSLAM_SOURCE_DIR) + "/" + relative;
+}
+
+class UavslamCli : public ::testing::Test {
+ protected:
+  fs::path dir;
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "uavslam_cli_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir = pattern;
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  }
+};
+
+TEST_F(UavslamCli, SimulateTracksTheShortFlightAndWritesEveryOutput) {
+  const fs::path out = dir / "out";
+  const CommandResult r =
+      run("simulate --quiet --scenario " + source("config/scenarios/short.yaml") + " --config " +
+          source("config/slam.yaml") + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("ATE RMSE"));
+
+  std::ifstream json_file(out / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(json_file);
+  const auto& errors = summary.at("trajectory_errors");
+  EXPECT_LT(errors.at("ate_horizontal_rmse_m").get<double>(), 0.10);
+  EXPECT_LT(errors.at("ate_vertical_rmse_m").get<double>(), 0.10);
+  const std::size_t scans = summary.at("scans").at("in");
+  const std::size_t accepted = summary.at("scans").at("accepted");
+  EXPECT_EQ(scans, 801u);  // 20 s at 40 Hz, both ends included
+  EXPECT_GE(accepted, scans * 9 / 10);
+
+  EXPECT_EQ(uavslam::io::read_tum((out / "estimate.tum").string()).size(), accepted);
+  EXPECT_EQ(uavslam::io::read_tum((out / "groundtruth.tum").string()).size(), scans);
+  EXPECT_EQ(uavslam::io::read_ply((out / "map.ply").string()).size(),
+            summary.at("map").at("points").get<std::size_t>());
+  std::ifstream csv(out / "scans.csv");
+  std::size_t lines = 0;
+  for (std::string line; std::getline(csv, line);) ++lines;
+  EXPECT_EQ(lines, scans + 1);
+
+  // eval on the written files reproduces the summary's figure.
+  const CommandResult e = run("eval --json --estimate " + (out / "estimate.tum").string() +
+                              " --groundtruth " + (out / "groundtruth.tum").string());
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  const nlohmann::json evaluated = nlohmann::json::parse(e.output);
+  EXPECT_NEAR(evaluated.at("ate_horizontal_rmse_m").get<double>(),
+              errors.at("ate_horizontal_rmse_m").get<double>(), 1e-5);
+}
+
+TEST_F(UavslamCli, HelpListsTheCommands) {
+  const CommandResult r = run("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("simulate"));
+  EXPECT_THAT(r.output, HasSubstr("eval"));
+  EXPECT_THAT(r.output, HasSubstr("sweep"));
+}
+
+TEST_F(UavslamCli, AMissingScenarioFileIsNamed) {
+  const CommandResult r = run("simulate --scenario /nonexistent/flight.yaml --out " + dir.string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("/nonexistent/flight.yaml"));
+}
+
+TEST_F(UavslamCli, AnIllTypedScenarioKeyNamesFileKeyAndValue) {
+  const std::string path = write("bad.yaml",
+                                 "world:\n  room: {min: [0, 0, 0], max: [20, 15, 4]}\n"
+                                 "trajectory:\n  waypoints:\n"
+                                 "    - {t: 0, position: [2, 2, 1], yaw_deg: 0}\n"
+                                 "    - {t: 5, position: [4, 2, 1], yaw_deg: 0}\n"
+                                 "lidar: {rate_hz: fast}\n");
+  const CommandResult r = run("simulate --scenario " + path + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(path));
+  EXPECT_THAT(r.output, HasSubstr("lidar.rate_hz"));
+  EXPECT_THAT(r.output, HasSubstr("fast"));
+}
+
+TEST_F(UavslamCli, AMissingRequiredScenarioKeyIsNamed) {
+  const std::string path = write("noroom.yaml",
+                                 "trajectory:\n  waypoints:\n"
+                                 "    - {t: 0, position: [2, 2, 1]}\n"
+                                 "    - {t: 5, position: [4, 2, 1]}\n");
+  const CommandResult r = run("simulate --scenario " + path + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("world"));
+}
+
+TEST_F(UavslamCli, AnUnknownConfigKeyOrOverrideIsRefused) {
+  const std::string config = write("slam.yaml", "icp:\n  iteratons: 12\n");
+  const std::string scenario = source("config/scenarios/short.yaml");
+  const CommandResult r = run("simulate --scenario " + scenario + " --config " + config +
+                              " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("icp.iteratons"));
+
+  const CommandResult s = run("simulate --scenario " + scenario + " --set icp.iterations=many" +
+                              " --out " + (dir / "o").string());
+  EXPECT_EQ(s.exit_code, 2) << s.output;
+  EXPECT_THAT(s.output, HasSubstr("many"));
+}
+
+TEST_F(UavslamCli, EvalNamesTheLineOfAMalformedTrajectory) {
+  const std::string good = write("gt.tum", "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
+  const std::string bad = write("est.tum", "0 0 0 0 0 0 0 1\n1 1 0 0 0\n");
+  const CommandResult r = run("eval --estimate " + bad + " --groundtruth " + good);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(bad + ":2:"));
+}
+
+}  // namespace

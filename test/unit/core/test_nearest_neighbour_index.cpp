@@ -1,0 +1,85 @@
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "core/BruteForceIndex.hpp"
+#include "core/ExactOctreeIndex.hpp"
+#include "core/FlannIndex.hpp"
+
+namespace uavslam {
+namespace {
+
+Points random_points(std::size_t n, double extent, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-extent, extent);
+  Points points(n);
+  for (Vec3& p : points) p = Vec3(u(rng), u(rng), u(rng) * 0.2);
+  return points;
+}
+
+// Adds the map in several batches, as keyframes do, so incremental growth is exercised too.
+void add_in_batches(NearestNeighbourIndex& index, const Points& map, std::size_t batch) {
+  for (std::size_t i = 0; i < map.size(); i += batch) {
+    index.add_points(
+        Points(map.begin() + long(i), map.begin() + long(std::min(map.size(), i + batch))));
+  }
+}
+
+TEST(ExactOctreeIndex, FindsTheSameNearestPointsAsBruteForce) {
+  // Points far outside the first root cube force the octree to grow upwards several times.
+  const Points map = random_points(5000, 60.0, 1);
+  const Points queries = random_points(500, 70.0, 2);
+  ExactOctreeIndex octree;
+  BruteForceIndex brute;
+  add_in_batches(octree, map, 216);
+  add_in_batches(brute, map, 216);
+  ASSERT_EQ(octree.size(), map.size());
+  std::vector<Neighbour> a, b;
+  octree.find_nearest(queries, a);
+  brute.find_nearest(queries, b);
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    EXPECT_DOUBLE_EQ(a[i].squared_distance, b[i].squared_distance) << "query " << i;
+  }
+}
+
+TEST(ExactOctreeIndex, HandlesManyCoincidentPoints) {
+  ExactOctreeIndex octree(4);
+  octree.add_points(Points(100, Vec3(1, 2, 3)));
+  octree.add_points({Vec3(5, 5, 5)});
+  std::vector<Neighbour> nearest;
+  octree.find_nearest({Vec3(4.9, 5, 5), Vec3(1, 2, 3.1)}, nearest);
+  EXPECT_EQ(nearest[0].index, 100u);
+  EXPECT_NEAR(nearest[1].squared_distance, 0.01, 1e-12);
+}
+
+TEST(FlannIndex, FindsNearlyAllExactNeighboursWithEnoughChecks) {
+  const Points map = random_points(20000, 20.0, 3);
+  const Points queries = random_points(1000, 20.0, 4);
+  FlannIndex flann(4, 256);
+  BruteForceIndex brute;
+  add_in_batches(flann, map, 1000);
+  add_in_batches(brute, map, 1000);
+  std::vector<Neighbour> a, b;
+  flann.find_nearest(queries, a);
+  brute.find_nearest(queries, b);
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < queries.size(); ++i) same += a[i].index == b[i].index;
+  EXPECT_GE(double(same) / double(queries.size()), 0.97);
+}
+
+TEST(FlannIndex, EmptyIndexAnswersWithoutCrashing) {
+  FlannIndex flann(4, 32);
+  std::vector<Neighbour> nearest;
+  flann.find_nearest({Vec3::Zero()}, nearest);
+  EXPECT_EQ(nearest.size(), 1u);
+  EXPECT_EQ(flann.size(), 0u);
+}
+
+TEST(NearestNeighbourIndex, FactoryRejectsAnUnknownName) {
+  SlamConfig::NearestNeighbour config;
+  config.index = "kdtree";
+  EXPECT_THROW(make_nearest_neighbour_index(config), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace uavslam

@@ -1,0 +1,65 @@
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "core/ScanProjection.hpp"
+
+namespace uavslam {
+namespace {
+
+std::shared_ptr<ScanGeometry> three_beams() {
+  auto g = std::make_shared<ScanGeometry>(ScanGeometry::planar(-M_PI / 2, M_PI / 2, 3));
+  g->min_range = 0.1;
+  g->max_range = 30.0;
+  return g;
+}
+
+TEST(ScanProjection, InvalidRangesAreDroppedAndCounted) {
+  const ScanGeometry g = *three_beams();
+  EXPECT_TRUE(is_valid_range(1.0f, g));
+  EXPECT_TRUE(is_valid_range(30.0f, g));
+  EXPECT_FALSE(is_valid_range(0.05f, g));
+  EXPECT_FALSE(is_valid_range(30.5f, g));
+  EXPECT_FALSE(is_valid_range(std::numeric_limits<float>::quiet_NaN(), g));
+  EXPECT_FALSE(is_valid_range(std::numeric_limits<float>::infinity(), g));
+
+  Scan scan;
+  scan.geometry = three_beams();
+  scan.ranges = {1.0f, std::numeric_limits<float>::quiet_NaN(), 0.0f};
+  const ProjectedScan p = project_scan(scan, Eigen::Quaterniond::Identity());
+  EXPECT_EQ(p.points.size(), 1u);
+  EXPECT_EQ(p.invalid, 2u);
+  EXPECT_NEAR(p.points[0].y(), -1.0, 1e-12);
+}
+
+TEST(ScanProjection, AppliesOrientationAndMount) {
+  auto g = three_beams();
+  g->mount.translation() = Vec3(0.0, 0.0, 0.1);
+  Scan scan;
+  scan.geometry = g;
+  scan.ranges = {2.0f, 2.0f, 2.0f};
+  // Yawed by 90 degrees: the forward beam (index 1, +x of the sensor) points along world +y.
+  const Eigen::Quaterniond yaw90(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitZ()));
+  const ProjectedScan p = project_scan(scan, yaw90);
+  ASSERT_EQ(p.points.size(), 3u);
+  EXPECT_TRUE(p.points[1].isApprox(Vec3(0.0, 2.0, 0.1), 1e-9)) << p.points[1].transpose();
+  // Pitched nose-down by 90 degrees the forward beam points at the floor, mount offset forward.
+  const Eigen::Quaterniond pitch(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitY()));
+  const ProjectedScan q = project_scan(scan, pitch);
+  EXPECT_TRUE(q.points[1].isApprox(Vec3(0.1, 0.0, -2.0), 1e-9)) << q.points[1].transpose();
+}
+
+TEST(ScanProjection, KeepsEveryKthPointAsTheSeed) {
+  Points points(1080, Vec3::Zero());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i].x() = double(i);
+  const Points kept = keep_every_kth(points, 5);
+  ASSERT_EQ(kept.size(), 216u);
+  EXPECT_EQ(kept[0].x(), 0.0);
+  EXPECT_EQ(kept[1].x(), 5.0);
+  EXPECT_EQ(keep_every_kth(points, 1).size(), 1080u);
+  EXPECT_EQ(keep_every_kth(Points{}, 5).size(), 0u);
+}
+
+}  // namespace
+}  // namespace uavslam

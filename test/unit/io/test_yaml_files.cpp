@@ -1,0 +1,365 @@
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "io/ScenarioFile.hpp"
+#include "io/SlamConfigFile.hpp"
+#include "io/YamlReader.hpp"
+
+namespace uavslam::io {
+namespace {
+
+using ::testing::HasSubstr;
+
+const char* const kMinimalScenario = R"(
+world:
+  room: {min: [0, 0, 0], max: [10, 8, 3]}
+trajectory:
+  waypoints:
+    - {t: 0, position: [1, 1, 1]}
+    - {t: 5, position: [2, 1, 1], yaw_deg: 90}
+)";
+
+// Writes YAML files under the test temp dir and removes them at the end of each test.
+class YamlFileTest : public ::testing::Test {
+ protected:
+  std::string write(const std::string& name, const std::string& text) {
+    const std::string path = ::testing::TempDir() + "uavslam_yaml_" + name;
+    std::ofstream(path) << text;
+    written_.push_back(path);
+    return path;
+  }
+
+  // The scenario with `from` replaced by `to` (which must occur in it).
+  std::string minimal_scenario_with(const std::string& from, const std::string& to) {
+    std::string text = kMinimalScenario;
+    const std::size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  }
+
+  void TearDown() override {
+    for (const std::string& path : written_) std::remove(path.c_str());
+  }
+
+ private:
+  std::vector<std::string> written_;
+};
+
+// Runs `load`, which must throw ConfigError, and returns the message.
+std::string config_error_of(const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no ConfigError thrown";
+  return "";
+}
+
+TEST_F(YamlFileTest, MinimalScenarioTakesTheDefaults) {
+  const std::string path = write("minimal.yaml", kMinimalScenario);
+  const sim::Scenario scenario = load_scenario(path);
+  EXPECT_EQ(scenario.name, "uavslam_yaml_minimal");  // the file's stem
+  EXPECT_EQ(scenario.world.room.max, Vec3(10.0, 8.0, 3.0));
+  ASSERT_EQ(scenario.waypoints.size(), 2u);
+  EXPECT_EQ(scenario.waypoints[0].yaw_deg, 0.0);
+  EXPECT_EQ(scenario.waypoints[1].yaw_deg, 90.0);
+  EXPECT_EQ(scenario.waypoints[1].position, Vec3(2.0, 1.0, 1.0));
+  const sim::LidarSpec lidar_defaults;
+  EXPECT_EQ(scenario.lidar.beams, lidar_defaults.beams);
+  EXPECT_EQ(scenario.lidar.mount_position, lidar_defaults.mount_position);
+  EXPECT_EQ(scenario.imu.rate_hz, sim::ImuSpec{}.rate_hz);
+  EXPECT_EQ(scenario.seed, 1u);
+  EXPECT_TRUE(scenario.world.boxes.empty());
+}
+
+TEST_F(YamlFileTest, FullScenarioReadsEveryKey) {
+  const std::string path = write("full.yaml", std::string(R"(
+name: full
+seed: 42
+world:
+  room: {min: [0, 0, 0], max: [10, 8, 3]}
+  boxes:
+    - {min: [5, 5, 0], max: [6, 6, 1]}
+  cylinders:
+    - {center: [8, 2], radius: 0.3, z: [0, 2.5]}
+trajectory:
+  waypoints:
+    - {t: 1, position: [1, 1, 1], yaw_deg: 10}
+    - {t: 3, position: [2, 1, 1], yaw_deg: 20}
+lidar:
+  beams: 720
+  fov_deg: 240
+  rate_hz: 20
+  min_range: 0.2
+  max_range: 25
+  range_noise_std: 0.02
+  mount: {position: [0.1, 0, 0.2], rpy_deg: [0, 0, 180]}
+  floor_mirror: {beams: 12, spread_deg: 15}
+  rings: 4
+  vertical_fov_deg: 20
+imu:
+  rate_hz: 100
+  orientation_noise_std_deg: 0.2
+  yaw_drift_deg_per_min: -1.5
+  gyro_noise_std: 0.002
+  accel_noise_std: 0.05
+)"));
+  const sim::Scenario s = load_scenario(path);
+  EXPECT_EQ(s.name, "full");
+  EXPECT_EQ(s.seed, 42u);
+  ASSERT_EQ(s.world.boxes.size(), 1u);
+  EXPECT_EQ(s.world.boxes[0].min, Vec3(5.0, 5.0, 0.0));
+  ASSERT_EQ(s.world.cylinders.size(), 1u);
+  EXPECT_EQ(s.world.cylinders[0].center, Eigen::Vector2d(8.0, 2.0));
+  EXPECT_EQ(s.world.cylinders[0].radius, 0.3);
+  EXPECT_EQ(s.world.cylinders[0].z1, 2.5);
+  EXPECT_EQ(s.waypoints[0].t, 1.0);
+  EXPECT_EQ(s.lidar.beams, 720);
+  EXPECT_EQ(s.lidar.fov_deg, 240.0);
+  EXPECT_EQ(s.lidar.rate_hz, 20.0);
+  EXPECT_EQ(s.lidar.min_range, 0.2);
+  EXPECT_EQ(s.lidar.max_range, 25.0);
+  EXPECT_EQ(s.lidar.range_noise_std, 0.02);
+  EXPECT_EQ(s.lidar.mount_position, Vec3(0.1, 0.0, 0.2));
+  EXPECT_EQ(s.lidar.mount_rpy_deg, Vec3(0.0, 0.0, 180.0));
+  EXPECT_EQ(s.lidar.floor_mirror.beams, 12);
+  EXPECT_EQ(s.lidar.floor_mirror.spread_deg, 15.0);
+  EXPECT_EQ(s.lidar.rings, 4);
+  EXPECT_EQ(s.lidar.vertical_fov_deg, 20.0);
+  EXPECT_EQ(s.imu.rate_hz, 100.0);
+  EXPECT_EQ(s.imu.orientation_noise_std_deg, 0.2);
+  EXPECT_EQ(s.imu.yaw_drift_deg_per_min, -1.5);
+  EXPECT_EQ(s.imu.gyro_noise_std, 0.002);
+  EXPECT_EQ(s.imu.accel_noise_std, 0.05);
+}
+
+TEST_F(YamlFileTest, MissingRequiredKeyIsNamed) {
+  const std::string path =
+      write("no_room.yaml", minimal_scenario_with("room: {min: [0, 0, 0], max: [10, 8, 3]}", "{}"));
+  const std::string message = config_error_of([&] { load_scenario(path); });
+  EXPECT_THAT(message, HasSubstr(path + ": missing required key 'world.room'"));
+}
+
+TEST_F(YamlFileTest, IllTypedValueNamesFileKeyAndValue) {
+  const std::string path =
+      write("fast.yaml", std::string(kMinimalScenario) + "lidar:\n  rate_hz: fast\n");
+  const std::string message = config_error_of([&] { load_scenario(path); });
+  EXPECT_THAT(message,
+              HasSubstr(path + ": key 'lidar.rate_hz': expected a number > 0, got 'fast'"));
+  EXPECT_THAT(message, HasSubstr("line 9"));
+}
+
+TEST_F(YamlFileTest, BadListElementIsNamedByIndex) {
+  const std::string path =
+      write("rpy.yaml", std::string(kMinimalScenario) + "lidar:\n  mount: {rpy_deg: [0, 0, up]}\n");
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'lidar.mount.rpy_deg[2]': expected a number, got 'up'"));
+}
+
+TEST_F(YamlFileTest, WrongLengthVectorIsRejected) {
+  const std::string path =
+      write("short_vec.yaml", minimal_scenario_with("position: [1, 1, 1]", "position: [1, 1]"));
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'trajectory.waypoints[0].position': expected a list of 3 numbers "
+                        "[x, y, z], got '[1, 1]'"));
+}
+
+TEST_F(YamlFileTest, UnknownKeyIsAnError) {
+  const std::string path =
+      write("typo.yaml", std::string(kMinimalScenario) + "lidar:\n  rat_hz: 40\n");
+  const std::string message = config_error_of([&] { load_scenario(path); });
+  EXPECT_THAT(message, HasSubstr(path + ": unknown key 'lidar.rat_hz'"));
+  EXPECT_THAT(message, HasSubstr("rate_hz"));  // the allowed keys are listed
+}
+
+TEST_F(YamlFileTest, FractionalIntegerIsRejected) {
+  const std::string path =
+      write("beams.yaml", std::string(kMinimalScenario) + "lidar:\n  beams: 2.5\n");
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'lidar.beams': expected an integer >= 1, got '2.5'"));
+}
+
+TEST_F(YamlFileTest, OutOfRangeValueIsRejected) {
+  const std::string path =
+      write("rate.yaml", std::string(kMinimalScenario) + "imu:\n  rate_hz: -5\n");
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'imu.rate_hz': expected a number > 0, got '-5'"));
+}
+
+TEST_F(YamlFileTest, MirrorCannotTakeMoreBeamsThanTheScanner) {
+  const std::string path = write("mirror.yaml", std::string(kMinimalScenario) +
+                                                    "lidar:\n  beams: 10\n  floor_mirror: "
+                                                    "{beams: 11}\n");
+  EXPECT_THAT(
+      config_error_of([&] { load_scenario(path); }),
+      HasSubstr("key 'lidar.floor_mirror.beams': expected an integer in [0, 10], got '11'"));
+}
+
+TEST_F(YamlFileTest, RoomMustHaveMinBelowMax) {
+  const std::string path =
+      write("room.yaml", minimal_scenario_with("max: [10, 8, 3]", "max: [10, 8, -3]"));
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'world.room': expected min < max on every axis"));
+}
+
+TEST_F(YamlFileTest, WaypointTimesMustIncrease) {
+  const std::string path = write("times.yaml", minimal_scenario_with("t: 5", "t: 0"));
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'trajectory.waypoints[1].t': expected a time after the previous "
+                        "waypoint's 0, got '0'"));
+}
+
+TEST_F(YamlFileTest, WaypointsMustBeInsideTheRoom) {
+  const std::string path =
+      write("outside.yaml", minimal_scenario_with("position: [2, 1, 1]", "position: [12, 1, 1]"));
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'trajectory.waypoints[1].position': expected a point inside the "
+                        "room and outside every obstacle, got '[12, 1, 1]'"));
+}
+
+TEST_F(YamlFileTest, AtLeastTwoWaypoints) {
+  const std::string path = write(
+      "one.yaml", minimal_scenario_with("    - {t: 5, position: [2, 1, 1], yaw_deg: 90}\n", ""));
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'trajectory.waypoints': expected a list of at least 2 waypoints"));
+}
+
+TEST_F(YamlFileTest, MissingFileIsNamed) {
+  const std::string path = ::testing::TempDir() + "uavslam_yaml_does_not_exist.yaml";
+  const std::string message = config_error_of([&] { load_scenario(path); });
+  EXPECT_THAT(message, HasSubstr("cannot read scenario file '" + path + "'"));
+  EXPECT_THAT(message, HasSubstr("No such file"));
+}
+
+TEST_F(YamlFileTest, MalformedYamlGivesTheLine) {
+  const std::string path = write("broken.yaml", "world:\n  room: {min: [0, 0, 0]\n");
+  const std::string message = config_error_of([&] { load_scenario(path); });
+  EXPECT_THAT(message, HasSubstr("cannot read scenario file '" + path + "': line "));
+  EXPECT_THAT(message, HasSubstr("column"));
+}
+
+TEST_F(YamlFileTest, ConfigErrorIsARuntimeError) {
+  EXPECT_THROW(load_slam_config(::testing::TempDir() + "uavslam_yaml_missing.yaml"),
+               std::runtime_error);
+}
+
+void expect_default_slam_config(const SlamConfig& config) {
+  const SlamConfig defaults;
+  EXPECT_EQ(config.scan.subsample_every, defaults.scan.subsample_every);
+  EXPECT_EQ(config.icp.iterations, defaults.icp.iterations);
+  EXPECT_EQ(config.icp.max_translation, defaults.icp.max_translation);
+  EXPECT_EQ(config.icp.max_error_after, defaults.icp.max_error_after);
+  EXPECT_EQ(config.icp.max_error_ratio, defaults.icp.max_error_ratio);
+  EXPECT_EQ(config.icp.max_correspondence_distance, defaults.icp.max_correspondence_distance);
+  EXPECT_EQ(config.nearest_neighbour.index, defaults.nearest_neighbour.index);
+  EXPECT_EQ(config.nearest_neighbour.flann_trees, defaults.nearest_neighbour.flann_trees);
+  EXPECT_EQ(config.nearest_neighbour.flann_checks, defaults.nearest_neighbour.flann_checks);
+  EXPECT_EQ(config.map.keyframe_height, defaults.map.keyframe_height);
+  EXPECT_EQ(config.map.keyframe_lateral, defaults.map.keyframe_lateral);
+  EXPECT_EQ(config.imu.max_gap, defaults.imu.max_gap);
+}
+
+TEST(SlamConfigFile, ShippedConfigHoldsTheDefaults) {
+  expect_default_slam_config(
+      load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml"));
+}
+
+TEST_F(YamlFileTest, EmptySlamConfigHoldsTheDefaults) {
+  expect_default_slam_config(load_slam_config(write("empty.yaml", "# nothing set\n")));
+}
+
+TEST_F(YamlFileTest, SlamConfigReadsEveryKey) {
+  const std::string path = write("slam.yaml", R"(
+scan: {subsample_every: 1}
+icp:
+  iterations: 20
+  max_translation: 0.5
+  max_error_after: 0.1
+  max_error_ratio: 0.9
+  max_correspondence_distance: 1.5
+nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
+map: {keyframe_height: 0.1, keyframe_lateral: 0.25}
+imu: {max_gap: 0.02}
+)");
+  const SlamConfig c = load_slam_config(path);
+  EXPECT_EQ(c.scan.subsample_every, 1);
+  EXPECT_EQ(c.icp.iterations, 20);
+  EXPECT_EQ(c.icp.max_translation, 0.5);
+  EXPECT_EQ(c.icp.max_error_after, 0.1);
+  EXPECT_EQ(c.icp.max_error_ratio, 0.9);
+  EXPECT_EQ(c.icp.max_correspondence_distance, 1.5);
+  EXPECT_EQ(c.nearest_neighbour.index, "exact");
+  EXPECT_EQ(c.nearest_neighbour.flann_trees, 8);
+  EXPECT_EQ(c.nearest_neighbour.flann_checks, 128);
+  EXPECT_EQ(c.map.keyframe_height, 0.1);
+  EXPECT_EQ(c.map.keyframe_lateral, 0.25);
+  EXPECT_EQ(c.imu.max_gap, 0.02);
+}
+
+TEST_F(YamlFileTest, SlamConfigRejectsAnUnknownIndex) {
+  const std::string path = write("index.yaml", "nearest_neighbour:\n  index: kdtree\n");
+  EXPECT_THAT(config_error_of([&] { load_slam_config(path); }),
+              HasSubstr(path + ": key 'nearest_neighbour.index': expected one of 'flann', "
+                               "'exact', 'brute', got 'kdtree'"));
+}
+
+TEST_F(YamlFileTest, SlamConfigRejectsATypo) {
+  const std::string path = write("iteratons.yaml", "icp:\n  iteratons: 12\n");
+  EXPECT_THAT(config_error_of([&] { load_slam_config(path); }),
+              HasSubstr(path + ": unknown key 'icp.iteratons'"));
+  const std::string section = write("section.yaml", "ICP:\n  iterations: 12\n");
+  EXPECT_THAT(config_error_of([&] { load_slam_config(section); }),
+              HasSubstr(section + ": unknown key 'ICP'"));
+}
+
+TEST_F(YamlFileTest, SlamConfigRejectsOutOfRangeValues) {
+  const std::string path = write("zero.yaml", "icp:\n  iterations: 0\n");
+  EXPECT_THAT(config_error_of([&] { load_slam_config(path); }),
+              HasSubstr("key 'icp.iterations': expected an integer >= 1, got '0'"));
+  const std::string negative = write("negative.yaml", "map:\n  keyframe_lateral: -0.5\n");
+  EXPECT_THAT(config_error_of([&] { load_slam_config(negative); }),
+              HasSubstr("key 'map.keyframe_lateral': expected a number >= 0, got '-0.5'"));
+}
+
+TEST_F(YamlFileTest, SlamConfigRejectsADuplicateKey) {
+  const std::string path = write("twice.yaml", "icp:\n  iterations: 5\n  iterations: 6\n");
+  EXPECT_THAT(config_error_of([&] { load_slam_config(path); }),
+              HasSubstr("duplicate key 'icp.iterations'"));
+}
+
+TEST(SlamConfigOverride, SetsOneValue) {
+  SlamConfig config;
+  apply_slam_config_override(config, "icp.iterations=12");
+  apply_slam_config_override(config, "nearest_neighbour.index=exact");
+  apply_slam_config_override(config, "map.keyframe_lateral=0.75");
+  EXPECT_EQ(config.icp.iterations, 12);
+  EXPECT_EQ(config.nearest_neighbour.index, "exact");
+  EXPECT_EQ(config.map.keyframe_lateral, 0.75);
+  EXPECT_EQ(config.icp.max_translation, SlamConfig{}.icp.max_translation);
+}
+
+TEST(SlamConfigOverride, RejectsUnknownKeysAndBadValues) {
+  SlamConfig config;
+  EXPECT_THAT(config_error_of([&] { apply_slam_config_override(config, "icp.iteratons=12"); }),
+              HasSubstr("unknown key 'icp.iteratons'"));
+  EXPECT_THAT(config_error_of([&] { apply_slam_config_override(config, "icp.iterations=many"); }),
+              HasSubstr("key 'icp.iterations': expected an integer >= 1, got 'many'"));
+  EXPECT_THAT(config_error_of([&] { apply_slam_config_override(config, "icp.iterations=2.5"); }),
+              HasSubstr("got '2.5'"));
+  EXPECT_THAT(
+      config_error_of([&] { apply_slam_config_override(config, "nearest_neighbour.index=kd"); }),
+      HasSubstr("expected one of 'flann', 'exact', 'brute', got 'kd'"));
+  EXPECT_THAT(config_error_of([&] { apply_slam_config_override(config, "icp.iterations"); }),
+              HasSubstr("expected section.key=value"));
+  EXPECT_EQ(config.icp.iterations, SlamConfig{}.icp.iterations);  // failures change nothing
+}
+
+}  // namespace
+}  // namespace uavslam::io

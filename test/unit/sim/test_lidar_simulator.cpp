@@ -1,0 +1,183 @@
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "SimTestHelpers.hpp"
+#include "sim/Angles.hpp"
+#include "sim/LidarSimulator.hpp"
+#include "sim/Trajectory.hpp"
+
+namespace uavslam::sim {
+namespace {
+
+// Three beams: to the right (-y), straight ahead (+x) and to the left (+y).
+LidarSpec three_beam_lidar() {
+  LidarSpec spec;
+  spec.beams = 3;
+  spec.fov_deg = 180.0;
+  spec.range_noise_std = 0.0;
+  return spec;
+}
+
+Pose level_pose(const Vec3& position, double yaw_deg) {
+  Pose pose;
+  pose.position = position;
+  pose.orientation = Eigen::AngleAxisd(deg_to_rad(yaw_deg), Vec3::UnitZ());
+  return pose;
+}
+
+TEST(LidarGeometry, PlanarBeamsSpanTheFieldOfViewAroundX) {
+  const LidarSpec spec;  // the Hokuyo defaults: 1080 beams over 270 degrees
+  const World world(testing::empty_room());
+  const auto geometry = LidarSimulator(spec, world, 1).geometry();
+  ASSERT_EQ(geometry->directions.size(), 1080u);
+  const double first = deg_to_rad(-135.0);
+  EXPECT_LT((geometry->directions.front() - Vec3(std::cos(first), std::sin(first), 0.0)).norm(),
+            1e-12);
+  EXPECT_LT((geometry->directions.back() - Vec3(std::cos(-first), std::sin(-first), 0.0)).norm(),
+            1e-12);
+  EXPECT_DOUBLE_EQ(geometry->min_range, 0.1);
+  EXPECT_DOUBLE_EQ(geometry->max_range, 30.0);
+  EXPECT_LT((geometry->mount.translation() - Vec3(0.0, 0.0, 0.1)).norm(), 1e-15);
+  EXPECT_TRUE(geometry->mount.linear().isIdentity(1e-15));
+}
+
+TEST(LidarGeometry, MountRotationIsRollPitchYaw) {
+  LidarSpec spec = three_beam_lidar();
+  spec.mount_rpy_deg = Vec3(0.0, 90.0, 0.0);  // pitched to look straight down
+  const World world(testing::empty_room());
+  const auto geometry = LidarSimulator(spec, world, 1).geometry();
+  EXPECT_LT((geometry->mount.linear() * Vec3::UnitX() - (-Vec3::UnitZ())).norm(), 1e-12);
+  spec.mount_rpy_deg = Vec3(10.0, 20.0, 30.0);
+  const Eigen::Matrix3d expected = (Eigen::AngleAxisd(deg_to_rad(30.0), Vec3::UnitZ()) *
+                                    Eigen::AngleAxisd(deg_to_rad(20.0), Vec3::UnitY()) *
+                                    Eigen::AngleAxisd(deg_to_rad(10.0), Vec3::UnitX()))
+                                       .toRotationMatrix();
+  EXPECT_TRUE(LidarSimulator(spec, world, 1).geometry()->mount.linear().isApprox(expected, 1e-12));
+}
+
+TEST(LidarGeometry, FloorMirrorBeamsFanDownwardInTheFirstBeamsPlane) {
+  LidarSpec spec;
+  spec.floor_mirror.beams = 30;
+  spec.floor_mirror.spread_deg = 20.0;
+  const World world(testing::empty_room());
+  const auto geometry = LidarSimulator(spec, world, 1).geometry();
+  const double azimuth = deg_to_rad(-135.0);
+  const Vec3 plane_normal(-std::sin(azimuth), std::cos(azimuth), 0.0);
+  for (int i = 0; i < 30; ++i) {
+    const Vec3& d = geometry->directions[static_cast<std::size_t>(i)];
+    EXPECT_NEAR(d.norm(), 1.0, 1e-12);
+    EXPECT_NEAR(d.dot(plane_normal), 0.0, 1e-12);            // in the vertical plane
+    EXPECT_LE(std::acos(-d.z()), deg_to_rad(10.0) + 1e-12);  // within the fan
+  }
+  EXPECT_NEAR(std::acos(-geometry->directions[0].z()), deg_to_rad(10.0), 1e-12);
+  EXPECT_NEAR(std::acos(-geometry->directions[29].z()), deg_to_rad(10.0), 1e-12);
+  EXPECT_EQ(geometry->directions[30].z(), 0.0);  // the rest stay planar
+}
+
+TEST(LidarGeometry, MultiRingHasBeamsTimesRingsDirections) {
+  LidarSpec spec;
+  spec.beams = 360;
+  spec.rings = 16;
+  spec.vertical_fov_deg = 30.0;
+  spec.floor_mirror.beams = 30;  // ignored with rings
+  const World world(testing::empty_room());
+  const auto geometry = LidarSimulator(spec, world, 1).geometry();
+  ASSERT_EQ(geometry->directions.size(), 360u * 16u);
+  EXPECT_NEAR(std::asin(geometry->directions.front().z()), deg_to_rad(-15.0), 1e-12);
+  EXPECT_NEAR(std::asin(geometry->directions.back().z()), deg_to_rad(15.0), 1e-12);
+}
+
+TEST(LidarSimulator, RangesAreTheDistancesToTheWallsFromTheSensor) {
+  const World world(testing::empty_room());  // 10 x 8 x 3
+  LidarSimulator lidar(three_beam_lidar(), world, 1);
+  const Scan scan = lidar.scan_at(level_pose(Vec3(3.0, 5.0, 1.5), 0.0), 2.5, 7);
+  EXPECT_DOUBLE_EQ(scan.stamp, 2.5);
+  EXPECT_EQ(scan.sequence, 7u);
+  EXPECT_EQ(scan.geometry, lidar.geometry());
+  ASSERT_EQ(scan.ranges.size(), 3u);
+  EXPECT_NEAR(scan.ranges[0], 5.0, 1e-5);  // right: the wall y = 0
+  EXPECT_NEAR(scan.ranges[1], 7.0, 1e-5);  // ahead: the wall x = 10
+  EXPECT_NEAR(scan.ranges[2], 3.0, 1e-5);  // left: the wall y = 8
+
+  const Scan turned = lidar.scan_at(level_pose(Vec3(3.0, 5.0, 1.5), 90.0), 2.5, 8);
+  EXPECT_NEAR(turned.ranges[1], 3.0, 1e-5);  // ahead is now +y
+}
+
+TEST(LidarSimulator, SensorSitsAtTheMountOffset) {
+  LidarSpec spec = three_beam_lidar();
+  spec.mount_position = Vec3(0.5, 0.0, 0.1);
+  const World world(testing::empty_room());
+  LidarSimulator lidar(spec, world, 1);
+  EXPECT_NEAR(lidar.scan_at(level_pose(Vec3(3.0, 5.0, 1.5), 0.0), 0.0, 0).ranges[1], 6.5, 1e-5);
+}
+
+TEST(LidarSimulator, SurfacesBeyondMaxRangeReadInfinity) {
+  LidarSpec spec = three_beam_lidar();
+  spec.max_range = 4.0;
+  const World world(testing::empty_room());
+  LidarSimulator lidar(spec, world, 1);
+  const Scan scan = lidar.scan_at(level_pose(Vec3(3.0, 5.0, 1.5), 0.0), 0.0, 0);
+  EXPECT_EQ(scan.ranges[0], std::numeric_limits<float>::infinity());
+  EXPECT_EQ(scan.ranges[1], std::numeric_limits<float>::infinity());
+  EXPECT_NEAR(scan.ranges[2], 3.0, 1e-5);
+}
+
+TEST(LidarSimulator, FloorMirrorBeamsReadTheHeightOverTheFloor) {
+  LidarSpec spec;
+  spec.range_noise_std = 0.0;
+  spec.floor_mirror.beams = 30;
+  spec.floor_mirror.spread_deg = 20.0;
+  const World world(testing::empty_room());
+  LidarSimulator lidar(spec, world, 1);
+  const double body_height = 1.5;
+  const double sensor_height = body_height + spec.mount_position.z();
+  const Scan scan = lidar.scan_at(level_pose(Vec3(5.0, 4.0, body_height), 40.0), 0.0, 0);
+  for (int i = 0; i < 30; ++i) {
+    const double tilt = deg_to_rad(-10.0 + 20.0 * i / 29.0);  // from the vertical
+    EXPECT_NEAR(scan.ranges[static_cast<std::size_t>(i)], sensor_height / std::cos(tilt), 1e-5)
+        << "beam " << i;
+  }
+}
+
+TEST(LidarSimulator, RangeNoiseHasTheConfiguredSpread) {
+  LidarSpec spec;  // range_noise_std 0.01
+  LidarSpec exact = spec;
+  exact.range_noise_std = 0.0;
+  const World world(testing::empty_room());
+  LidarSimulator noisy_lidar(spec, world, 3);
+  LidarSimulator exact_lidar(exact, world, 3);
+  const Pose pose = level_pose(Vec3(4.0, 3.0, 1.2), 15.0);
+  const Scan truth = exact_lidar.scan_at(pose, 0.0, 0);
+  double sum = 0.0, sum_squares = 0.0;
+  int count = 0;
+  for (int k = 0; k < 40; ++k) {
+    const Scan scan = noisy_lidar.scan_at(pose, 0.0, 0);
+    for (std::size_t i = 0; i < scan.ranges.size(); ++i) {
+      const double error = double(scan.ranges[i]) - double(truth.ranges[i]);
+      sum += error;
+      sum_squares += error * error;
+      ++count;
+    }
+  }
+  const double mean = sum / count;
+  const double std_dev = std::sqrt(sum_squares / count - mean * mean);
+  EXPECT_NEAR(mean, 0.0, 3e-4);  // 43200 samples: the standard error is 5e-5
+  EXPECT_NEAR(std_dev, 0.01, 0.0005);
+}
+
+TEST(LidarSimulator, SameSeedSameScansOtherSeedOtherNoise) {
+  const World world(testing::empty_room());
+  LidarSimulator first(LidarSpec{}, world, 5);
+  LidarSimulator second(LidarSpec{}, world, 5);
+  LidarSimulator other(LidarSpec{}, world, 6);
+  const Pose pose = level_pose(Vec3(4.0, 3.0, 1.2), 15.0);
+  const Scan a = first.scan_at(pose, 0.0, 0);
+  EXPECT_EQ(a.ranges, second.scan_at(pose, 0.0, 0).ranges);
+  EXPECT_NE(a.ranges, other.scan_at(pose, 0.0, 0).ranges);
+  EXPECT_NE(a.ranges, first.scan_at(pose, 0.0, 0).ranges);  // the noise moves on
+}
+
+}  // namespace
+}  // namespace uavslam::sim

@@ -1,0 +1,109 @@
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "SimTestHelpers.hpp"
+#include "sim/World.hpp"
+
+namespace uavslam::sim {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kTolerance = 1e-9;
+
+// The empty 10 x 8 x 3 room with one box and one cylinder (z 0.5 .. 2) in it.
+World furnished_room() {
+  WorldSpec spec = testing::empty_room();
+  spec.boxes.push_back({Vec3(6.0, 1.0, 0.0), Vec3(7.0, 3.0, 1.0)});
+  Cylinder cylinder;
+  cylinder.center = Eigen::Vector2d(3.0, 6.0);
+  cylinder.radius = 0.5;
+  cylinder.z0 = 0.5;
+  cylinder.z1 = 2.0;
+  spec.cylinders.push_back(cylinder);
+  return World(spec);
+}
+
+TEST(World, RayFromInsideHitsEachFaceOfTheRoom) {
+  const World world(testing::empty_room());
+  const Vec3 origin(2.0, 3.0, 1.0);
+  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitX(), 30.0), 8.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitX(), 30.0), 2.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitY(), 30.0), 5.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitY(), 30.0), 3.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitZ(), 30.0), 2.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitZ(), 30.0), 1.0, kTolerance);
+}
+
+TEST(World, DiagonalRayHitsTheNearerFace) {
+  const World world(testing::empty_room());
+  const Vec3 direction = Vec3(1.0, 1.0, 0.0).normalized();
+  // From (2, 3): the wall y = 8 is 5 m away along y, the wall x = 10 is 8 m away along x.
+  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 3.0, 1.0), direction, 30.0), 5.0 * std::sqrt(2.0),
+              kTolerance);
+}
+
+TEST(World, SurfaceBeyondMaxRangeIsAMiss) {
+  const World world(testing::empty_room());
+  EXPECT_EQ(world.cast_ray(Vec3(2.0, 3.0, 1.0), Vec3::UnitX(), 7.9), kInf);
+  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 3.0, 1.0), Vec3::UnitX(), 8.0), 8.0, kTolerance);
+}
+
+TEST(World, RayHitsTheFrontFaceOfABox) {
+  const World world = furnished_room();
+  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 2.0, 0.5), Vec3::UnitX(), 30.0), 4.0, kTolerance);
+  // From above: the top face at z = 1.
+  EXPECT_NEAR(world.cast_ray(Vec3(6.5, 2.0, 2.5), -Vec3::UnitZ(), 30.0), 1.5, kTolerance);
+}
+
+TEST(World, HorizontalRayPassingOverABoxHitsTheWall) {
+  const World world = furnished_room();
+  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 2.0, 1.5), Vec3::UnitX(), 30.0), 8.0, kTolerance);
+}
+
+TEST(World, RayHitsTheSideOfACylinder) {
+  const World world = furnished_room();
+  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.0, 1.0), Vec3::UnitX(), 30.0), 2.0, kTolerance);
+  // Off the axis by 0.3 m: the side is at x = 3 - sqrt(0.5^2 - 0.3^2) = 2.6.
+  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.3, 1.0), Vec3::UnitX(), 30.0), 2.1, kTolerance);
+}
+
+TEST(World, RayHitsTheCapsOfACylinder) {
+  const World world = furnished_room();
+  EXPECT_NEAR(world.cast_ray(Vec3(3.2, 6.1, 2.9), -Vec3::UnitZ(), 30.0), 0.9, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(3.2, 6.1, 0.1), Vec3::UnitZ(), 30.0), 0.4, kTolerance);
+}
+
+TEST(World, RayPassingBesideACylinderHitsTheWall) {
+  const World world = furnished_room();
+  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.6, 1.0), Vec3::UnitX(), 30.0), 9.5, kTolerance);
+  // Above its top the cylinder is no obstacle either.
+  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.0, 2.5), Vec3::UnitX(), 30.0), 9.5, kTolerance);
+}
+
+TEST(World, IsFreeInsideTheRoomOutsideObstacles) {
+  const World world = furnished_room();
+  EXPECT_TRUE(world.is_free(Vec3(1.0, 1.0, 1.0)));
+  EXPECT_FALSE(world.is_free(Vec3(6.5, 2.0, 0.5)));   // in the box
+  EXPECT_FALSE(world.is_free(Vec3(3.0, 6.2, 1.0)));   // in the cylinder
+  EXPECT_TRUE(world.is_free(Vec3(3.0, 6.2, 2.5)));    // above the cylinder
+  EXPECT_FALSE(world.is_free(Vec3(11.0, 1.0, 1.0)));  // outside the room
+}
+
+TEST(World, DistanceToNearestSurfaceIsExact) {
+  const World world = furnished_room();
+  EXPECT_NEAR(world.distance_to_nearest_surface(Vec3(5.0, 4.0, 1.5)), 1.5, kTolerance);  // ceiling
+  EXPECT_NEAR(world.distance_to_nearest_surface(Vec3(5.5, 2.0, 0.5)), 0.5, kTolerance);  // box face
+  // Diagonally off the box's top edge (x = 6, z = 1): sqrt(0.3^2 + 0.4^2).
+  EXPECT_NEAR(world.distance_to_nearest_surface(Vec3(5.7, 2.0, 1.4)), 0.5, kTolerance);
+  EXPECT_NEAR(world.distance_to_nearest_surface(Vec3(6.5, 2.0, 0.8)), 0.2, kTolerance);  // inside
+  // Cylinder side, and diagonally off the rim of its top cap.
+  EXPECT_NEAR(world.distance_to_nearest_surface(Vec3(3.0, 5.2, 1.0)), 0.3, kTolerance);
+  EXPECT_NEAR(world.distance_to_nearest_surface(Vec3(3.0, 5.2, 2.4)), 0.5, kTolerance);
+  EXPECT_NEAR(world.distance_to_nearest_obstacle(Vec3(5.0, 4.0, 1.5)), std::hypot(1.0, 1.0, 0.5),
+              kTolerance);  // the box's corner (6, 3, 1)
+}
+
+}  // namespace
+}  // namespace uavslam::sim
