@@ -32,8 +32,6 @@ void FlannIndex::add_points(const Points& points) {
   for (const Vec3& p : points)
     block.insert(block.end(), {float(p.x()), float(p.y()), float(p.z())});
   flann::Matrix<float> rows(block.data(), points.size(), 3);
-  // The kd-trees' random split choices come from rand(): seed it so runs repeat exactly.
-  flann::seed_random(1);
   if (impl_->size == 0) {
     impl_->tree.buildIndex(rows);
   } else {

@@ -1,6 +1,7 @@
 // Approximate nearest neighbours by FLANN's randomised kd-trees: the seed's real-time search
 // (ch. 5.4.3.1, modification 1). The only translation unit that instantiates FLANN (it is slow
-// to compile).
+// to compile). FLANN 1.9.2 shuffles the points with std::random_device when it builds its trees,
+// so runs on this index do not repeat bit for bit; the octree's do.
 #pragma once
 
 #include <memory>

@@ -63,22 +63,6 @@ void apply_transform(Points& points, const Vec3& correction) {
   for (Vec3& p : points) p += correction;
 }
 
-std::string to_string(MatchOutcome outcome) {
-  switch (outcome) {
-    case MatchOutcome::Accepted:
-      return "accepted";
-    case MatchOutcome::NoCorrespondences:
-      return "no_correspondences";
-    case MatchOutcome::TranslationTooLarge:
-      return "translation_too_large";
-    case MatchOutcome::ErrorTooLarge:
-      return "error_too_large";
-    case MatchOutcome::ErrorIncreased:
-      return "error_increased";
-  }
-  return "unknown";
-}
-
 ScanMatcher::ScanMatcher(const SlamConfig::Icp& config) : config_(config) {}
 
 MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan,
@@ -102,7 +86,7 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan,
     result.correction -= t;
     result.iterations = k + 1;
     if (result.correction.norm() > config_.max_translation) {
-      result.outcome = MatchOutcome::TranslationTooLarge;
+      result.outcome = ScanOutcome::TranslationTooLarge;
       return result;
     }
   }
@@ -115,11 +99,11 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan,
   result.correspondences = pairs.scan.size();
   result.aligned = std::move(moving.points);
   if (result.error_after > config_.max_error_after) {
-    result.outcome = MatchOutcome::ErrorTooLarge;
+    result.outcome = ScanOutcome::ErrorTooLarge;
   } else if (result.error_after > config_.max_error_ratio * result.error_before) {
-    result.outcome = MatchOutcome::ErrorIncreased;
+    result.outcome = ScanOutcome::ErrorIncreased;
   } else {
-    result.outcome = MatchOutcome::Accepted;
+    result.outcome = ScanOutcome::Accepted;
   }
   return result;
 }

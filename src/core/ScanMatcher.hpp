@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/ScanOutcome.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
 
@@ -49,17 +50,9 @@ double error_function(const Correspondences& pairs, const Vec3& t = Vec3::Zero()
 // Move the points by the correction (the scan onto the map: -t).
 void apply_transform(Points& points, const Vec3& correction);
 
-enum class MatchOutcome {
-  Accepted,
-  NoCorrespondences,    // no scan point had a map point near enough
-  TranslationTooLarge,  // accumulated correction beyond icp.max_translation (step 3)
-  ErrorTooLarge,        // error after above icp.max_error_after (step 4)
-  ErrorIncreased,       // error after above icp.max_error_ratio * error before (step 4)
-};
-std::string to_string(MatchOutcome outcome);
-
 struct MatchResult {
-  MatchOutcome outcome = MatchOutcome::NoCorrespondences;
+  // Accepted, NoCorrespondences, TranslationTooLarge, ErrorTooLarge or ErrorIncreased.
+  ScanOutcome outcome = ScanOutcome::NoCorrespondences;
   Vec3 position = Vec3::Zero();    // the body position the scan was aligned to
   Vec3 correction = Vec3::Zero();  // position - initial position
   double error_before = 0.0;       // m^2

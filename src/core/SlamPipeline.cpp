@@ -10,52 +10,12 @@ namespace {
 // A translation in three unknowns needs at least this many pairs to be more than a guess.
 constexpr std::size_t kMinPoints = 10;
 
-ScanOutcome from_match(MatchOutcome outcome) {
-  switch (outcome) {
-    case MatchOutcome::Accepted:
-      return ScanOutcome::Accepted;
-    case MatchOutcome::NoCorrespondences:
-      return ScanOutcome::NoCorrespondences;
-    case MatchOutcome::TranslationTooLarge:
-      return ScanOutcome::TranslationTooLarge;
-    case MatchOutcome::ErrorTooLarge:
-      return ScanOutcome::ErrorTooLarge;
-    case MatchOutcome::ErrorIncreased:
-      return ScanOutcome::ErrorIncreased;
-  }
-  return ScanOutcome::Malformed;
-}
-
 bool is_well_formed(const Scan& scan) {
   return scan.geometry && std::isfinite(scan.stamp) &&
          scan.ranges.size() == scan.geometry->directions.size() && !scan.ranges.empty();
 }
 
 }  // namespace
-
-std::string to_string(ScanOutcome outcome) {
-  switch (outcome) {
-    case ScanOutcome::Accepted:
-      return "accepted";
-    case ScanOutcome::MapInitialised:
-      return "map_initialised";
-    case ScanOutcome::Malformed:
-      return "malformed";
-    case ScanOutcome::NoImu:
-      return "no_imu";
-    case ScanOutcome::TooFewPoints:
-      return "too_few_points";
-    case ScanOutcome::NoCorrespondences:
-      return "no_correspondences";
-    case ScanOutcome::TranslationTooLarge:
-      return "translation_too_large";
-    case ScanOutcome::ErrorTooLarge:
-      return "error_too_large";
-    case ScanOutcome::ErrorIncreased:
-      return "error_increased";
-  }
-  return "unknown";
-}
 
 SlamPipeline::SlamPipeline(const SlamConfig& config, const Vec3& initial_position)
     : config_(config),
@@ -105,11 +65,11 @@ ScanReport SlamPipeline::process_scan(const Scan& scan) {
 
   // Steps 3-5: translation-only ICP from the last position.
   const MatchResult match = matcher_.match(map_, points, pose_.position);
-  report.outcome = from_match(match.outcome);
+  report.outcome = match.outcome;
   report.error_before = match.error_before;
   report.error_after = match.error_after;
   report.iterations = match.iterations;
-  if (match.outcome != MatchOutcome::Accepted) return finish(report);
+  if (match.outcome != ScanOutcome::Accepted) return finish(report);
 
   // Steps 6-7: report the new position (orientation from the IMU); a keyframe after enough motion.
   pose_ = {scan.stamp, match.position, *orientation};

@@ -9,24 +9,11 @@
 
 #include "core/ImuBuffer.hpp"
 #include "core/ScanMatcher.hpp"
+#include "core/ScanOutcome.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
 
 namespace uavslam {
-
-enum class ScanOutcome {
-  Accepted,
-  MapInitialised,  // the first scan seeds the map
-  Malformed,       // no geometry, range count differs from the geometry, or a bad stamp
-  NoImu,           // no orientation sample near the scan's time
-  TooFewPoints,    // fewer valid points than the matcher needs
-  NoCorrespondences,
-  TranslationTooLarge,
-  ErrorTooLarge,
-  ErrorIncreased,
-};
-constexpr std::size_t kScanOutcomeCount = 9;
-std::string to_string(ScanOutcome outcome);
 
 struct ScanReport {
   ScanOutcome outcome = ScanOutcome::Malformed;

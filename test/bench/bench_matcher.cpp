@@ -288,7 +288,7 @@ void BM_MatchScan(benchmark::State& state, const IndexSpec& spec, int scan_point
 
   std::vector<double> samples;
   samples.reserve(1 << 16);
-  MatchOutcome outcome = MatchOutcome::NoCorrespondences;
+  ScanOutcome outcome = ScanOutcome::NoCorrespondences;
   Vec3 position = Vec3::Zero();
   for (auto _ : state) {
     const auto start = Clock::now();
@@ -304,7 +304,7 @@ void BM_MatchScan(benchmark::State& state, const IndexSpec& spec, int scan_point
   set_latency_counters(state, samples);
   state.counters["scan_points"] = double(scan.points.size());
   state.counters["map_points"] = double(map.size());
-  state.counters["accepted"] = outcome == MatchOutcome::Accepted ? 1.0 : 0.0;
+  state.counters["accepted"] = outcome == ScanOutcome::Accepted ? 1.0 : 0.0;
   state.counters["pos_err_mm"] = 1e3 * (position - q.position).norm();
 }
 

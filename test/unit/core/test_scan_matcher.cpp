@@ -95,7 +95,7 @@ TEST_F(MatchInRoom, RecoversAKnownOffset) {
   icp.iterations = 30;
   const MatchResult r =
       ScanMatcher(icp).match(map, scan_points(), truth.position + Vec3(0.12, -0.08, 0));
-  EXPECT_EQ(r.outcome, MatchOutcome::Accepted) << to_string(r.outcome);
+  EXPECT_EQ(r.outcome, ScanOutcome::Accepted) << to_string(r.outcome);
   EXPECT_LT((r.position - truth.position).head<2>().norm(), 0.02) << r.position.transpose();
   EXPECT_LT(r.error_after, r.error_before);
   EXPECT_EQ(r.iterations, 30);
@@ -109,21 +109,21 @@ TEST_F(MatchInRoom, DiscardsAnErroneouslyLargeTranslation) {
   icp.max_correspondence_distance = 0.0;
   const MatchResult r =
       ScanMatcher(icp).match(map, scan_points(), truth.position + Vec3(0.4, 0, 0));
-  EXPECT_EQ(r.outcome, MatchOutcome::TranslationTooLarge);
+  EXPECT_EQ(r.outcome, ScanOutcome::TranslationTooLarge);
 }
 
 TEST_F(MatchInRoom, SkipsAScanWhoseErrorAfterIsTooLarge) {
   SlamConfig::Icp icp;
   icp.max_error_after = 1e-9;
   const MatchResult r = ScanMatcher(icp).match(map, scan_points(), truth.position);
-  EXPECT_EQ(r.outcome, MatchOutcome::ErrorTooLarge);
+  EXPECT_EQ(r.outcome, ScanOutcome::ErrorTooLarge);
 }
 
 TEST_F(MatchInRoom, ReportsNoCorrespondencesAgainstAFarAwayMap) {
   SlamConfig::Icp icp;
   icp.max_correspondence_distance = 0.5;
   const MatchResult r = ScanMatcher(icp).match(map, scan_points(), Vec3(100, 100, 0));
-  EXPECT_EQ(r.outcome, MatchOutcome::NoCorrespondences);
+  EXPECT_EQ(r.outcome, ScanOutcome::NoCorrespondences);
 }
 
 }  // namespace
