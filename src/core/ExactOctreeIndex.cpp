@@ -96,7 +96,9 @@ void ExactOctreeIndex::split(std::int32_t node_index) {
     if (child == kNoChild) child = make_child(node_index, octant);
     nodes_[child].points.push_back(i);
   }
-  for (std::int32_t child : nodes_[node_index].children) {
+  // A copy: splitting a child appends nodes, which may move nodes_[node_index].
+  const std::array<std::int32_t, 8> children = nodes_[node_index].children;
+  for (std::int32_t child : children) {
     if (child != kNoChild && nodes_[child].points.size() > leaf_capacity_ &&
         nodes_[child].half_size > kMinHalfSize) {
       split(child);
