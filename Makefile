@@ -35,7 +35,7 @@ test-asan: deps
 
 # Speed: the matcher benchmark's tables (README "Speed").
 bench: build
-	bash test/bench/matcher_table.sh $(BUILD)
+	bash test/bench/matcher_table.sh --build-dir $(BUILD)
 
 # Accuracy and time against ICP iterations and FLANN checks (README "Choosing the iteration count").
 sweep: build

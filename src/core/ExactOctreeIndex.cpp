@@ -9,12 +9,6 @@ namespace {
 // Below this size a leaf stops splitting (coincident points would split it forever).
 constexpr double kMinHalfSize = 1e-3;
 
-// Squared distance from q to the cube at center with the half size h (0 inside).
-double squared_distance_to_cube(const Vec3& q, const Vec3& center, double h) {
-  const Vec3 outside = ((q - center).cwiseAbs().array() - h).cwiseMax(0.0).matrix();
-  return outside.squaredNorm();
-}
-
 }  // namespace
 
 ExactOctreeIndex::ExactOctreeIndex(std::size_t leaf_capacity)
@@ -106,28 +100,29 @@ void ExactOctreeIndex::split(std::int32_t node_index) {
   }
 }
 
-// Branch and bound: the octant holding the query first, then the others nearest first, skipping
-// every cube farther away than the best point found so far.
+// Branch and bound: the octant holding the query first, then those across one, two and three of
+// the node's centre planes. Reaching an octant across a plane means crossing it, so the squared
+// distances to the crossed planes are a lower bound: octants with a bound beyond the best point
+// found so far are skipped, and the answer stays exact.
 void ExactOctreeIndex::search(std::int32_t node_index, const Vec3& q, Neighbour& best) const {
   const Node& node = nodes_[node_index];
-  for (std::uint32_t i : node.points) {
-    const double d2 = (points_[i] - q).squaredNorm();
-    if (d2 < best.squared_distance) best = {i, d2};
+  if (node.leaf) {
+    for (std::uint32_t i : node.points) {
+      const double d2 = (points_[i] - q).squaredNorm();
+      if (d2 < best.squared_distance) best = {i, d2};
+    }
+    return;
   }
-  std::array<std::pair<double, std::int32_t>, 8> order;
-  int count = 0;
-  for (std::int32_t child : node.children) {
+  static constexpr std::array<int, 8> kCrossedPlanes{0, 1, 2, 4, 3, 5, 6, 7};
+  const Vec3 plane_d2 = (q - node.center).cwiseAbs2();
+  const int own = octant_of(node, q);
+  for (int crossed : kCrossedPlanes) {
+    const std::int32_t child = node.children[own ^ crossed];
     if (child == kNoChild) continue;
-    // Insertion sort: at most eight octants, nearest first.
-    std::pair<double, std::int32_t> entry{
-        squared_distance_to_cube(q, nodes_[child].center, nodes_[child].half_size), child};
-    int k = count++;
-    for (; k > 0 && order[k - 1].first > entry.first; --k) order[k] = order[k - 1];
-    order[k] = entry;
-  }
-  for (int k = 0; k < count; ++k) {
-    if (order[k].first >= best.squared_distance) break;
-    search(order[k].second, q, best);
+    const double bound = ((crossed & 1) ? plane_d2.x() : 0.0) +
+                         ((crossed & 2) ? plane_d2.y() : 0.0) +
+                         ((crossed & 4) ? plane_d2.z() : 0.0);
+    if (bound < best.squared_distance) search(child, q, best);
   }
 }
 
@@ -136,6 +131,18 @@ void ExactOctreeIndex::find_nearest(const Points& queries, std::vector<Neighbour
   if (root_ == kNoChild) return;
   for (std::size_t i = 0; i < queries.size(); ++i) {
     Neighbour best{0, std::numeric_limits<double>::infinity()};
+    search(root_, queries[i], best);
+    nearest[i] = best;
+  }
+}
+
+void ExactOctreeIndex::find_nearest_again(const Points& queries,
+                                          std::vector<Neighbour>& nearest) const {
+  if (root_ == kNoChild || nearest.size() != queries.size()) return find_nearest(queries, nearest);
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    // The old neighbour is a real point, so its distance bounds the search and the answer stays
+    // exact; after a small move it is near the answer, so most of the tree is pruned at once.
+    Neighbour best{nearest[i].index, (points_[nearest[i].index] - queries[i]).squaredNorm()};
     search(root_, queries[i], best);
     nearest[i] = best;
   }

@@ -14,11 +14,12 @@ namespace uavslam {
 class ExactOctreeIndex final : public NearestNeighbourIndex {
  public:
   // leaf_capacity: points a leaf holds before it splits into eight octants.
-  explicit ExactOctreeIndex(std::size_t leaf_capacity = 16);
+  explicit ExactOctreeIndex(std::size_t leaf_capacity = 32);
 
   void add_points(const Points& points) override;
   std::size_t size() const override { return points_.size(); }
   void find_nearest(const Points& queries, std::vector<Neighbour>& nearest) const override;
+  void find_nearest_again(const Points& queries, std::vector<Neighbour>& nearest) const override;
 
  private:
   static constexpr std::int32_t kNoChild = -1;

@@ -27,6 +27,11 @@ class NearestNeighbourIndex {
   virtual std::size_t size() const = 0;
   // For each query the nearest indexed point; `nearest` is resized to queries.size().
   virtual void find_nearest(const Points& queries, std::vector<Neighbour>& nearest) const = 0;
+  // The same, for queries that moved a little since `nearest` was found for them (the next ICP
+  // iteration): an exact index starts from the old neighbour's distance as its bound.
+  virtual void find_nearest_again(const Points& queries, std::vector<Neighbour>& nearest) const {
+    find_nearest(queries, nearest);
+  }
 };
 
 // "flann" (approximate kd-trees), "exact" (octree) or "brute" (every point; tests and benchmarks).

@@ -19,7 +19,16 @@ ScanPoints weigh_points(Points points, const std::vector<bool>& vertical, bool s
 Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
                                     double max_distance) {
   std::vector<Neighbour> nearest;
-  map.find_nearest(scan.points, nearest);
+  return find_nearest_points(map, scan, max_distance, nearest);
+}
+
+Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
+                                    double max_distance, std::vector<Neighbour>& nearest) {
+  if (nearest.size() == scan.points.size()) {
+    map.find_nearest_again(scan.points, nearest);
+  } else {
+    map.find_nearest(scan.points, nearest);
+  }
   const double max_squared = max_distance * max_distance;
   Correspondences pairs;
   pairs.scan.reserve(scan.points.size());
@@ -74,12 +83,13 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan,
   const double max_distance = config_.max_correspondence_distance;
 
   // Find initial error: the pairs found here also serve the first iteration.
-  Correspondences pairs = find_nearest_points(map, moving, max_distance);
+  std::vector<Neighbour> nearest;
+  Correspondences pairs = find_nearest_points(map, moving, max_distance, nearest);
   if (pairs.empty()) return result;
   result.error_before = error_function(pairs);
 
   for (int k = 0; k < config_.iterations; ++k) {
-    if (k > 0) pairs = find_nearest_points(map, moving, max_distance);
+    if (k > 0) pairs = find_nearest_points(map, moving, max_distance, nearest);
     if (pairs.empty()) return result;
     const Vec3 t = best_translation(pairs);
     apply_transform(moving.points, -t);
@@ -93,7 +103,7 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan,
   result.position = initial + result.correction;
 
   // Calculate resultant error.
-  pairs = find_nearest_points(map, moving, max_distance);
+  pairs = find_nearest_points(map, moving, max_distance, nearest);
   if (pairs.empty()) return result;
   result.error_after = error_function(pairs);
   result.correspondences = pairs.scan.size();

@@ -37,6 +37,10 @@ struct Correspondences {
 
 // Step 1: pair each scan point with its nearest map point; pairs whose weighted distance exceeds
 // max_distance get omega = 0 and are left out (max_distance <= 0: keep all, as the seed does).
+// `nearest` carries the neighbours from one iteration to the next: empty, they are searched
+// afresh; filled for these points, the search starts from them.
+Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
+                                    double max_distance, std::vector<Neighbour>& nearest);
 Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
                                     double max_distance);
 

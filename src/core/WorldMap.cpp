@@ -13,4 +13,8 @@ void WorldMap::find_nearest(const Points& queries, std::vector<Neighbour>& neare
   index_->find_nearest(queries, nearest);
 }
 
+void WorldMap::find_nearest_again(const Points& queries, std::vector<Neighbour>& nearest) const {
+  index_->find_nearest_again(queries, nearest);
+}
+
 }  // namespace uavslam

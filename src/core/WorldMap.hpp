@@ -17,6 +17,8 @@ class WorldMap {
 
   // The nearest map point d_i of each query point m_i (step 1).
   void find_nearest(const Points& queries, std::vector<Neighbour>& nearest) const;
+  // The same after the queries moved a little: `nearest` holds their previous neighbours.
+  void find_nearest_again(const Points& queries, std::vector<Neighbour>& nearest) const;
 
   const Vec3& point(std::size_t i) const { return points_[i]; }
   const Points& points() const { return points_; }
