@@ -39,7 +39,8 @@ bench: build
 
 # Accuracy and time against ICP iterations and FLANN checks (README "Choosing the iteration count").
 sweep: build
-	$(UAVSLAM) sweep --scenario config/scenarios/demo.yaml --config config/slam.yaml
+	$(UAVSLAM) sweep --scenario config/scenarios/demo.yaml --config config/slam.yaml \
+	  --iterations 1,2,3,5,10,20 --checks exact,16,64
 
 format:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

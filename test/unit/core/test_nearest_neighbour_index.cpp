@@ -42,6 +42,26 @@ TEST(ExactOctreeIndex, FindsTheSameNearestPointsAsBruteForce) {
   }
 }
 
+TEST(ExactOctreeIndex, SearchingAgainFromOldNeighboursStaysExact) {
+  const Points map = random_points(5000, 20.0, 5);
+  Points queries = random_points(300, 20.0, 6);
+  ExactOctreeIndex octree;
+  BruteForceIndex brute;
+  add_in_batches(octree, map, 216);
+  add_in_batches(brute, map, 216);
+  std::vector<Neighbour> warm;
+  octree.find_nearest(queries, warm);
+  // The next ICP iteration: every query moved; some a little, some by metres.
+  for (std::size_t i = 0; i < queries.size(); ++i)
+    queries[i] += Vec3(0.03, -0.02, 0.01) * double(i % 50);
+  octree.find_nearest_again(queries, warm);
+  std::vector<Neighbour> truth;
+  brute.find_nearest(queries, truth);
+  for (std::size_t i = 0; i < queries.size(); ++i) {
+    EXPECT_DOUBLE_EQ(warm[i].squared_distance, truth[i].squared_distance) << "query " << i;
+  }
+}
+
 TEST(ExactOctreeIndex, HandlesManyCoincidentPoints) {
   ExactOctreeIndex octree(4);
   octree.add_points(Points(100, Vec3(1, 2, 3)));
