@@ -3,9 +3,10 @@
 BUILD      ?= build
 BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc)
-UAVSLAM    := $(BUILD)/components/uavslam/uavslam
+UAVSLAM    := $(BUILD)/bin/uavslam
 
-.PHONY: all deps configure build demo test test-unit test-asan bench sweep format format-check clean
+.PHONY: all deps configure build demo simulate test test-unit test-asan bench bench-latency sweep \
+        format format-check clean
 
 all: build
 
@@ -18,9 +19,17 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j$(JOBS)
 
-# The main job: the default flight simulated and mapped in-process, with its summary.
+# The main job: the six DDS processes (config/launch/demo.yaml) fly 90 s of the demo scenario in
+# real time on loopback, then the run's summary (out/demo).
 demo: build
-	$(UAVSLAM) simulate --scenario config/scenarios/demo.yaml --config config/slam.yaml --out out/demo
+	rm -rf out/demo
+	$(UAVSLAM) launch config/launch/demo.yaml
+	$(UAVSLAM) report out/demo
+
+# The whole 180 s demo flight mapped in-process (no DDS), as fast as the pipeline goes.
+simulate: build
+	$(UAVSLAM) simulate --scenario config/scenarios/demo.yaml --config config/slam.yaml \
+	  --out out/simulate
 
 # Every test: unit and integration tests of the release build, then the unit tests under
 # AddressSanitizer + UndefinedBehaviorSanitizer.
@@ -33,9 +42,14 @@ test-asan: deps
 	cmake --build $(BUILD_ASAN) -j$(JOBS)
 	cd $(BUILD_ASAN) && ctest -L unit --output-on-failure -j$(JOBS)
 
-# Speed: the matcher benchmark's tables (README "Speed").
+# Speed: the matcher benchmark's tables and the end-to-end latency (README "Speed").
 bench: build
 	bash test/bench/matcher_table.sh --build-dir $(BUILD)
+	$(MAKE) bench-latency
+
+# Scan publish -> pose received through a real slam_matcher process, 40 Hz, 60 s of the demo flight.
+bench-latency: build
+	$(BUILD)/test/bench/bench_latency --scenario config/scenarios/demo.yaml --duration 60
 
 # Accuracy and time against ICP iterations and FLANN checks (README "Choosing the iteration count").
 sweep: build

@@ -12,7 +12,7 @@ PACKAGES=(
   # DDS (Fast DDS 2.9, Fast CDR 1.0, fastddsgen 2.3, fastdds shm clean)
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   # config, command line, output
-  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libpng-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
 )

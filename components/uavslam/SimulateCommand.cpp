@@ -10,7 +10,7 @@
 #include "Commands.hpp"
 #include "RunSummary.hpp"
 #include "SimulatedFlight.hpp"
-#include "StopRequest.hpp"
+#include "common/StopRequest.hpp"
 #include "io/FileError.hpp"
 #include "io/PlyFile.hpp"
 #include "io/ScenarioFile.hpp"

@@ -2,7 +2,7 @@
 
 #include <chrono>
 
-#include "StopRequest.hpp"
+#include "common/StopRequest.hpp"
 #include "sim/FlightSimulator.hpp"
 
 namespace uavslam::cli {
@@ -31,7 +31,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
   std::size_t next_imu = 0;
   const auto run_start = Clock::now();
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
-    if (stop_requested()) {
+    if (process::stop_requested()) {
       run.stopped_early = true;
       break;
     }

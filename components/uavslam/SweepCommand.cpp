@@ -7,7 +7,7 @@
 #include "Commands.hpp"
 #include "RunSummary.hpp"
 #include "SimulatedFlight.hpp"
-#include "StopRequest.hpp"
+#include "common/StopRequest.hpp"
 #include "io/ScenarioFile.hpp"
 
 namespace uavslam::cli {
@@ -47,7 +47,7 @@ int run_sweep(const SweepOptions& o) {
          "ms/scan mean | ms/scan p99 |\n|---|---|---|---|---|---|---|\n";
   for (const std::string& checks : o.checks) {
     for (int iterations : o.iterations) {
-      if (stop_requested()) return 130;
+      if (process::stop_requested()) return 130;
       SlamConfig config = base;
       config.icp.iterations = iterations;
       if (checks == "exact") {

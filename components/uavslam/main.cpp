@@ -5,7 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "Commands.hpp"
-#include "StopRequest.hpp"
+#include "common/StopRequest.hpp"
 #include "io/FileError.hpp"
 #include "io/YamlReader.hpp"
 
@@ -18,7 +18,9 @@ int main(int argc, char** argv) {
   uavslam::cli::add_simulate_command(app, exit_code);
   uavslam::cli::add_eval_command(app, exit_code);
   uavslam::cli::add_sweep_command(app, exit_code);
-  uavslam::cli::install_stop_handler();
+  uavslam::cli::add_launch_command(app, exit_code);
+  uavslam::cli::add_report_command(app, exit_code);
+  uavslam::process::install_stop_handler();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,8 +1,8 @@
-#include "StopRequest.hpp"
+#include "common/StopRequest.hpp"
 
 #include <csignal>
 
-namespace uavslam::cli {
+namespace uavslam::process {
 namespace {
 
 volatile std::sig_atomic_t g_stop = 0;
@@ -22,4 +22,4 @@ bool stop_requested() {
   return g_stop != 0;
 }
 
-}  // namespace uavslam::cli
+}  // namespace uavslam::process

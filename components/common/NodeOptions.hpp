@@ -1,0 +1,38 @@
+// The options every DDS process takes: which domain and vehicle, which QoS profile file and
+// participant profile, and an optional YAML config whose `dds` section and own section fill in
+// whatever the command line did not set (flags win over the file).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "io/YamlReader.hpp"
+
+namespace uavslam::process {
+
+struct NodeOptions {
+  int domain = 0;
+  std::string vehicle = "uav1";
+  std::string qos_file;  // empty: dds::default_profiles_path()
+  std::string participant_profile = "uavslam_loopback";
+  std::string config_file;
+};
+
+// Registers --config, --domain, --vehicle, --qos, --participant-profile.
+void add_node_options(CLI::App& app, NodeOptions& options);
+
+// After parsing: reads options.config_file (if any), fills the node options the command line left
+// unset from its `dds` section, and returns the section named `node` (e.g. "lidar_driver") for
+// the process's own keys. Throws io::ConfigError naming file, key and value.
+std::optional<io::YamlReader> apply_node_config(const CLI::App& app, NodeOptions& options,
+                                                const std::string& node);
+
+// The QoS profile file to load: --qos, the config's dds.qos_file, or the default.
+std::string profiles_path(const NodeOptions& options);
+
+// True when the flag was not given on the command line (so a config file may set it).
+bool unset(const CLI::App& app, const std::string& flag);
+
+}  // namespace uavslam::process

@@ -1,0 +1,70 @@
+#include "common/SimSourceOptions.hpp"
+
+#include "common/NodeOptions.hpp"
+
+namespace uavslam::process {
+
+void add_sim_source_options(CLI::App& app, SimSourceOptions& options) {
+  app.add_option("--source", options.source, "where the data comes from")
+      ->check(CLI::IsMember({"sim"}))
+      ->capture_default_str();
+  app.add_option("--scenario", options.scenario, "scenario YAML for the sim source")
+      ->capture_default_str();
+  app.add_option("--rate", options.rate, "publish this many times faster than real time")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--wait-for-subscribers", options.wait_for_subscribers,
+                 "publish only once this many readers have matched (waits up to 30 s)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--duration", options.duration,
+                 "publish only the first this many seconds of the flight (0: all of it)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--start-at", options.start_at,
+                 "system-clock time (s since 1970) at which the flight's first sample is due; give "
+                 "lidar_driver and imu_bridge the same value so their streams share one timeline "
+                 "(samples overdue when the process is ready are skipped); 0: start when ready")
+      ->check(CLI::NonNegativeNumber);
+}
+
+RealTimePacer make_pacer(const SimSourceOptions& options, double flight_start) {
+  if (options.start_at <= 0.0) return RealTimePacer(options.rate);
+  return RealTimePacer(options.rate, options.start_at, flight_start);
+}
+
+bool within_duration(const SimSourceOptions& options, double flight_start, double stamp) {
+  return options.duration <= 0.0 || stamp - flight_start <= options.duration;
+}
+
+void apply_sim_source_config(const CLI::App& app, const io::YamlReader& section,
+                             SimSourceOptions& options,
+                             const std::vector<std::string>& extra_keys) {
+  std::vector<std::string> keys{"source",   "scenario", "rate", "wait_for_subscribers",
+                                "duration", "start_at"};
+  keys.insert(keys.end(), extra_keys.begin(), extra_keys.end());
+  section.expect_keys_only(keys);
+  if (unset(app, "--source") && section.has("source")) {
+    options.source = section.at("source").as_choice({"sim"});
+  }
+  if (unset(app, "--scenario")) {
+    options.scenario = section.get_string_or("scenario", options.scenario);
+  }
+  if (unset(app, "--rate")) {
+    options.rate = section.get_double_or("rate", options.rate, io::NumberRange::positive());
+  }
+  if (unset(app, "--wait-for-subscribers")) {
+    options.wait_for_subscribers = section.get_int_or(
+        "wait_for_subscribers", options.wait_for_subscribers, io::NumberRange::at_least(0));
+  }
+  if (unset(app, "--start-at")) {
+    options.start_at =
+        section.get_double_or("start_at", options.start_at, io::NumberRange::non_negative());
+  }
+  if (unset(app, "--duration")) {
+    options.duration =
+        section.get_double_or("duration", options.duration, io::NumberRange::non_negative());
+  }
+}
+
+}  // namespace uavslam::process

@@ -1,0 +1,79 @@
+// lidar_driver: publishes the `scan` topic. Source `sim`: the flight simulator's LiDAR along a
+// scenario's flight, in real time or `--rate` times faster; `--groundtruth FILE` also writes the
+// simulator's true pose at every published scan (TUM), for evaluating the run afterwards.
+#include <chrono>
+#include <iostream>
+
+#include <msg/LaserScanPubSubTypes.h>
+#include <CLI/CLI.hpp>
+
+#include "common/NodeOptions.hpp"
+#include "common/PacedStream.hpp"
+#include "common/RunNode.hpp"
+#include "common/SimSourceOptions.hpp"
+#include "common/StopRequest.hpp"
+#include "dds/Conversions.hpp"
+#include "dds/Participant.hpp"
+#include "dds/Topics.hpp"
+#include "dds/Writer.hpp"
+#include "io/ScenarioFile.hpp"
+#include "io/TumFile.hpp"
+#include "sim/Angles.hpp"
+#include "sim/FlightSimulator.hpp"
+
+namespace uavslam {
+namespace {
+
+int publish_scans(const process::NodeOptions& node, const process::SimSourceOptions& o,
+                  const std::string& groundtruth_path) {
+  const sim::Scenario scenario = io::load_scenario(o.scenario);
+  sim::FlightSimulator simulator(scenario);
+  const double fov = sim::deg_to_rad(scenario.lidar.fov_deg);
+  const double increment = fov / (scenario.lidar.beams - 1);
+
+  dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
+                               "lidar_driver");
+  const std::string topic = dds::topic_name(node.vehicle, dds::kScanTopic);
+  dds::Writer<msg::LaserScanPubSubType> writer(participant, topic, "sensor_writer");
+  std::cerr << "lidar_driver: publishing " << topic << " from " << scenario.name << " at "
+            << scenario.lidar.rate_hz * o.rate << " Hz (domain " << node.domain << ")\n";
+
+  if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
+  const dds::Source source{"laser", node.vehicle};
+  std::vector<Pose> truth;
+  const process::StreamCounts counts = process::publish_paced<Scan>(
+      o, simulator.start_time(), [&](Scan& scan) { return simulator.next_scan(scan); },
+      [&](const Scan& scan) {
+        if (!groundtruth_path.empty()) truth.push_back(simulator.ground_truth_at(scan.stamp));
+        return writer.write(dds::to_msg(scan, -fov / 2.0, increment, source));
+      });
+  if (!groundtruth_path.empty()) io::write_tum(groundtruth_path, truth);
+  std::cerr << "lidar_driver: published " << counts.published << " scans, " << counts.missed
+            << " overdue and skipped" << (process::stop_requested() ? " (stopped)" : "") << "\n";
+  return 0;
+}
+
+}  // namespace
+}  // namespace uavslam
+
+int main(int argc, char** argv) {
+  CLI::App app{"lidar_driver: publishes the `scan` topic (source sim: the flight simulator)"};
+  uavslam::process::NodeOptions node;
+  uavslam::process::SimSourceOptions source;
+  uavslam::process::add_node_options(app, node);
+  uavslam::process::add_sim_source_options(app, source);
+  std::string groundtruth;
+  app.add_option("--groundtruth", groundtruth,
+                 "also write the simulator's true pose at each published scan to this TUM file");
+  CLI11_PARSE(app, argc, argv);
+  uavslam::process::install_stop_handler();
+  return uavslam::process::run_node("lidar_driver", [&] {
+    if (const auto section = uavslam::process::apply_node_config(app, node, "lidar_driver")) {
+      uavslam::process::apply_sim_source_config(app, *section, source, {"groundtruth"});
+      if (uavslam::process::unset(app, "--groundtruth")) {
+        groundtruth = section->get_string_or("groundtruth", groundtruth);
+      }
+    }
+    return uavslam::publish_scans(node, source, groundtruth);
+  });
+}

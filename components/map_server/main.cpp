@@ -1,0 +1,284 @@
+// map_server: subscribes `map_points` (and `pose`, for its status), keeps the world point map and
+// an OctoMap occupancy octree (each keyframe ray-cast from its sensor origin), and publishes `map`
+// snapshots (pruned, maximum likelihood) at most once per publish period and only when the map
+// changed. The `map` writer is TRANSIENT_LOCAL, so a ground station joining late gets the current
+// map. On stop it can write the octree (`map.bt`) and every received point (`map_points.ply`).
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <stdexcept>
+#include <unordered_set>
+
+#include <msg/MapPointsPubSubTypes.h>
+#include <msg/OccupancyMapPubSubTypes.h>
+#include <msg/PosePubSubTypes.h>
+#include <CLI/CLI.hpp>
+
+#include "KeyframeQueue.hpp"
+#include "common/IncompatibleQos.hpp"
+#include "common/NodeOptions.hpp"
+#include "common/RunNode.hpp"
+#include "common/StopRequest.hpp"
+#include "core/OccupancyOctree.hpp"
+#include "dds/Conversions.hpp"
+#include "dds/OccupancyMapConversions.hpp"
+#include "dds/Participant.hpp"
+#include "dds/Reader.hpp"
+#include "dds/Topics.hpp"
+#include "dds/Writer.hpp"
+#include "io/FileError.hpp"
+#include "io/OctreeFile.hpp"
+#include "io/PlyFile.hpp"
+
+namespace uavslam {
+namespace {
+using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
+
+struct MapServerOptions {
+  OccupancyConfig occupancy;
+  double publish_period = 1.0;  // s
+  std::string out;              // empty: write no files on stop
+};
+
+// Mean and maximum of a duration in milliseconds.
+struct TimeFigure {
+  std::uint64_t count = 0;
+  double total_ms = 0.0;
+  double max_ms = 0.0;
+  void add(Clock::time_point start) {
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    ++count;
+    total_ms += ms;
+    max_ms = std::max(max_ms, ms);
+  }
+  double mean_ms() const { return count ? total_ms / count : 0.0; }
+};
+
+// A malformed configuration is a configuration error (exit 2), whichever path set the value.
+OccupancyOctree make_octree(const OccupancyConfig& config) {
+  try {
+    return OccupancyOctree(config);
+  } catch (const std::invalid_argument& e) {
+    throw io::ConfigError(std::string("bad occupancy setting (flag or config key): ") + e.what());
+  }
+}
+
+void prepare_out_dir(const std::string& out) {
+  if (out.empty()) return;
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error) throw io::file_error(out, "cannot create the output directory: " + error.message());
+}
+
+class MapServerNode {
+ public:
+  MapServerNode(const process::NodeOptions& node, const MapServerOptions& o)
+      : vehicle_(node.vehicle),
+        options_(o),
+        octree_(make_octree(o.occupancy)),
+        participant_(node.domain, process::profiles_path(node), node.participant_profile,
+                     "map_server"),
+        map_(participant_, dds::topic_name(vehicle_, dds::kMapTopic), "map_writer"),
+        map_points_(participant_, dds::topic_name(vehicle_, dds::kMapPointsTopic),
+                    "map_points_reader",
+                    [this](const msg::MapPoints& m, const eprosima::fastdds::dds::SampleInfo&) {
+                      queue_.push(m);
+                    }),
+        poses_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic), "state_reader",
+               [this](const msg::PoseWithCovarianceStamped& m,
+                      const eprosima::fastdds::dds::SampleInfo&) {
+                 std::lock_guard<std::mutex> lock(pose_mutex_);
+                 last_pose_ = dds::from_msg(m);
+               }) {}
+
+  int run() {
+    std::cerr << "map_server: mapping " << map_points_.topic() << " into " << map_.topic() << " at "
+              << options_.occupancy.resolution << " m\n";
+    const auto period = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(options_.publish_period));
+    auto last_publish = Clock::now() - period;
+    while (!process::stop_requested()) {
+      check_qos();
+      ingest(queue_.take_all(Clock::now() + std::chrono::milliseconds(100)));
+      if (map_changed() && Clock::now() - last_publish >= period) {
+        last_publish = Clock::now();
+        publish_snapshot();
+      }
+    }
+    flush();
+    // OctoMap's own progress output on writing goes before our summary line.
+    if (!options_.out.empty()) write_files();
+    print_summary();
+    return 0;
+  }
+
+ private:
+  void check_qos() const {
+    process::throw_if_incompatible(map_);
+    process::throw_if_incompatible(map_points_);
+    process::throw_if_incompatible(poses_);
+  }
+
+  void ingest(const std::vector<msg::MapPoints>& keyframes) {
+    for (const msg::MapPoints& m : keyframes) ingest(m);
+  }
+
+  void ingest(const msg::MapPoints& m) {
+    const Points points = dds::from_msg(m);
+    const auto& o = m.sensor_origin();
+    const Vec3 origin(o.x(), o.y(), o.z());
+    if (!is_well_formed_keyframe(points, origin)) {
+      ++malformed_;
+      return;
+    }
+    // A keyframe delivered again (a TRANSIENT_LOCAL history replayed to us) must not count its
+    // points twice.
+    if (!keyframes_seen_.insert(m.keyframe_index()).second) {
+      ++duplicates_;
+      return;
+    }
+    const auto start = Clock::now();
+    octree_.insert_keyframe(points, origin);
+    insert_time_.add(start);
+    world_points_.insert(world_points_.end(), points.begin(), points.end());
+    last_stamp_ = dds::from_msg_time(m.header().stamp());
+  }
+
+  bool map_changed() const { return octree_.revision() != published_revision_; }
+
+  void publish_snapshot() {
+    const auto start = Clock::now();
+    const msg::OccupancyMap snapshot =
+        dds::to_msg(octree_.pruned_tree(), publish_time_.count, octree_.points_inserted(),
+                    last_stamp_, dds::Source{"map", vehicle_});
+    if (!map_.write(snapshot)) {
+      std::cerr << "map_server: snapshot " << publish_time_.count << " not accepted by DDS\n";
+      return;
+    }
+    publish_time_.add(start);
+    published_revision_ = octree_.revision();
+    last_snapshot_bytes_ = snapshot.octomap_binary().size();
+  }
+
+  // On stop: what is still queued goes into the map, the map out to its subscribers.
+  void flush() {
+    ingest(queue_.take_all(Clock::now()));
+    if (map_changed()) publish_snapshot();
+    // The writer is asynchronous: give the last snapshot a moment to reach its readers.
+    if (map_.matched() > 0) map_.wait_for_acknowledgments(std::chrono::seconds(2));
+  }
+
+  void write_files() const {
+    io::write_bt((fs::path(options_.out) / "map.bt").string(), octree_.tree());
+    io::write_ply((fs::path(options_.out) / "map_points.ply").string(), world_points_);
+  }
+
+  void print_summary() {
+    std::lock_guard<std::mutex> lock(pose_mutex_);
+    std::cerr << "map_server: " << octree_.keyframes_inserted() << " keyframes, "
+              << octree_.points_inserted() << " points, " << octree_.occupied_leaves()
+              << " occupied cells (insert " << insert_time_.mean_ms() << " ms mean, "
+              << insert_time_.max_ms << " ms max); " << publish_time_.count
+              << " snapshots published (last " << last_snapshot_bytes_ << " bytes, "
+              << publish_time_.mean_ms() << " ms mean, " << publish_time_.max_ms
+              << " ms max); dropped " << duplicates_ << " duplicate and " << malformed_
+              << " malformed keyframes; " << poses_.received() << " poses seen";
+    if (poses_.received() > 0) {
+      const Vec3& p = last_pose_.position;
+      std::cerr << " (last at " << p.x() << ", " << p.y() << ", " << p.z() << ")";
+    }
+    std::cerr << "\n";
+  }
+
+  std::string vehicle_;
+  MapServerOptions options_;
+  OccupancyOctree octree_;
+  Points world_points_;
+  std::unordered_set<std::uint32_t> keyframes_seen_;
+  std::uint64_t duplicates_ = 0;
+  std::uint64_t malformed_ = 0;
+  std::uint64_t published_revision_ = 0;
+  double last_stamp_ = 0.0;
+  TimeFigure insert_time_;
+  TimeFigure publish_time_;  // encoding a snapshot and handing it to DDS
+  std::size_t last_snapshot_bytes_ = 0;
+  std::mutex pose_mutex_;
+  Pose last_pose_;
+  map_server::KeyframeQueue queue_;
+  dds::Participant participant_;
+  dds::Writer<msg::OccupancyMapPubSubType> map_;
+  dds::Reader<msg::MapPointsPubSubType> map_points_;
+  dds::Reader<msg::PoseWithCovarianceStampedPubSubType> poses_;
+};
+
+void apply_own_config(const CLI::App& app, const io::YamlReader& section, MapServerOptions& o) {
+  section.expect_keys_only(
+      {"resolution", "max_range", "publish_period", "out", "probability_hit", "probability_miss"});
+  OccupancyConfig& c = o.occupancy;
+  if (process::unset(app, "--resolution")) {
+    c.resolution = section.get_double_or("resolution", c.resolution, io::NumberRange::positive());
+  }
+  if (process::unset(app, "--max-range")) {
+    c.max_range = section.get_double_or("max_range", c.max_range, io::NumberRange::positive());
+  }
+  if (process::unset(app, "--publish-period")) {
+    o.publish_period =
+        section.get_double_or("publish_period", o.publish_period, io::NumberRange::non_negative());
+  }
+  if (process::unset(app, "--out")) o.out = section.get_string_or("out", o.out);
+  if (process::unset(app, "--probability-hit")) {
+    c.probability_hit = section.get_double_or("probability_hit", c.probability_hit,
+                                              io::NumberRange::greater_than(0.5));
+  }
+  if (process::unset(app, "--probability-miss")) {
+    c.probability_miss =
+        section.get_double_or("probability_miss", c.probability_miss, io::NumberRange::positive());
+  }
+}
+
+void add_own_options(CLI::App& app, MapServerOptions& o) {
+  app.add_option("--resolution", o.occupancy.resolution, "octree leaf size (m)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--max-range", o.occupancy.max_range,
+                 "longest ray marked (m): a farther point clears its ray up to here and marks "
+                 "nothing (default: no limit)")
+      ->check(CLI::PositiveNumber);
+  app.add_option(
+         "--publish-period", o.publish_period,
+         "least time between two `map` snapshots (s); one is sent only when the map changed")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--out", o.out, "on stop, write map.bt (OctoMap) and map_points.ply here");
+  app.add_option("--probability-hit", o.occupancy.probability_hit,
+                 "occupancy probability a ray's end adds, in (0.5, 1)")
+      ->capture_default_str();
+  app.add_option("--probability-miss", o.occupancy.probability_miss,
+                 "occupancy probability a ray's crossing adds, in (0, 0.5)")
+      ->capture_default_str();
+}
+
+}  // namespace
+}  // namespace uavslam
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "map_server: subscribes map_points (and pose), keeps an OctoMap occupancy map, publishes "
+      "map snapshots (late joiners get the current one)"};
+  uavslam::process::NodeOptions node;
+  uavslam::MapServerOptions options;
+  uavslam::process::add_node_options(app, node);
+  uavslam::add_own_options(app, options);
+  CLI11_PARSE(app, argc, argv);
+  uavslam::process::install_stop_handler();
+  return uavslam::process::run_node("map_server", [&] {
+    if (const auto section = uavslam::process::apply_node_config(app, node, "map_server")) {
+      uavslam::apply_own_config(app, *section, options);
+    }
+    uavslam::prepare_out_dir(options.out);
+    uavslam::MapServerNode server(node, options);
+    return server.run();
+  });
+}

@@ -1,0 +1,210 @@
+// slam_matcher: subscribes `scan` and `imu`, runs the SLAM pipeline (src/core) on the freshest
+// scan, publishes `pose`, `map_points` and `matcher_status`. The sensor (mount, floor mirror,
+// beam layout) comes from the `lidar` section of a scenario or sensor YAML.
+#include <chrono>
+#include <cmath>
+#include <iostream>
+
+#include <msg/ImuPubSubTypes.h>
+#include <msg/LaserScanPubSubTypes.h>
+#include <msg/MapPointsPubSubTypes.h>
+#include <msg/MatcherStatusPubSubTypes.h>
+#include <msg/PosePubSubTypes.h>
+#include <CLI/CLI.hpp>
+
+#include "ScanQueue.hpp"
+#include "common/NodeOptions.hpp"
+#include "common/RunNode.hpp"
+#include "common/StopRequest.hpp"
+#include "core/SlamPipeline.hpp"
+#include "dds/Conversions.hpp"
+#include "dds/Participant.hpp"
+#include "dds/Reader.hpp"
+#include "dds/Topics.hpp"
+#include "dds/Writer.hpp"
+#include "io/ScenarioFile.hpp"
+#include "io/SlamConfigFile.hpp"
+#include "sim/LidarGeometry.hpp"
+
+namespace uavslam {
+namespace {
+using Clock = std::chrono::steady_clock;
+
+struct MatcherOptions {
+  std::string sensor = "config/scenarios/demo.yaml";
+  std::string slam_config;
+  std::vector<double> initial_position;  // empty: the scenario's first waypoint
+};
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+double to_seconds(const eprosima::fastrtps::rtps::Time_t& t) {
+  return t.seconds() + t.nanosec() * 1e-9;
+}
+
+// How good the match was, for consumers of `pose`: 1 for a perfect fit, 0 at the rejection limit.
+float quality_of(const ScanReport& report, const SlamConfig& config) {
+  if (report.outcome == ScanOutcome::MapInitialised) return 1.0f;
+  return static_cast<float>(
+      std::clamp(1.0 - report.error_after / config.icp.max_error_after, 0.0, 1.0));
+}
+
+class MatcherNode {
+ public:
+  MatcherNode(const process::NodeOptions& node, const MatcherOptions& o)
+      : vehicle_(node.vehicle),
+        scenario_(io::load_scenario(o.sensor)),
+        config_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
+        geometry_(sim::make_scan_geometry(scenario_.lidar)),
+        slam_(config_, initial_position(o)),
+        participant_(node.domain, process::profiles_path(node), node.participant_profile,
+                     "slam_matcher"),
+        pose_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic), "state_writer"),
+        map_points_(participant_, dds::topic_name(vehicle_, dds::kMapPointsTopic),
+                    "map_points_writer"),
+        status_(participant_, dds::topic_name(vehicle_, dds::kMatcherStatusTopic), "status_writer"),
+        scans_(participant_, dds::topic_name(vehicle_, dds::kScanTopic), "sensor_reader",
+               [this](const msg::LaserScan& m, const eprosima::fastdds::dds::SampleInfo& info) {
+                 queue_.push_scan({m, to_seconds(info.source_timestamp)});
+               }),
+        imu_(participant_, dds::topic_name(vehicle_, dds::kImuTopic), "sensor_reader",
+             [this](const msg::Imu& m, const eprosima::fastdds::dds::SampleInfo&) {
+               queue_.push_imu(dds::from_msg(m));
+             }) {}
+
+  int run() {
+    std::cerr << "slam_matcher: matching " << dds::topic_name(vehicle_, dds::kScanTopic)
+              << " with the sensor of " << scenario_.name << "\n";
+    while (!process::stop_requested()) {
+      auto work =
+          queue_.wait_for_scan(std::chrono::milliseconds(100), std::chrono::milliseconds(20));
+      if (work) process(*work);
+    }
+    print_summary();
+    return 0;
+  }
+
+ private:
+  Vec3 initial_position(const MatcherOptions& o) const {
+    if (o.initial_position.size() == 3) {
+      return {o.initial_position[0], o.initial_position[1], o.initial_position[2]};
+    }
+    return scenario_.waypoints.front().position;
+  }
+
+  void process(matcher::ScanQueue::Work& work) {
+    for (const ImuSample& sample : work.imu) slam_.add_imu(sample);
+    const Scan scan = dds::from_msg(work.scan.message, geometry_);
+    const auto start = Clock::now();
+    const ScanReport report = slam_.process_scan(scan);
+    const double processing_ms =
+        std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    const dds::Source source{"map", vehicle_};
+    if (report.accepted()) {
+      pose_.write(
+          dds::to_msg(report.pose, quality_of(report, config_), scan.sequence, poses_++, source));
+    }
+    if (report.map_updated) {
+      const Vec3 origin =
+          report.pose.position + report.pose.orientation * geometry_->mount.translation();
+      map_points_.write(
+          dds::to_msg(report.added_points, origin, report.pose.stamp, keyframes_++, source));
+    }
+    status_.write(
+        status_of(report, scan, processing_ms, (wall_seconds() - work.scan.published_at) * 1e3));
+    rejected_ += !report.accepted();
+  }
+
+  msg::MatcherStatus status_of(const ScanReport& report, const Scan& scan, double processing_ms,
+                               double latency_ms) {
+    msg::MatcherStatus s;
+    msg::Header header;
+    header.stamp(dds::to_msg_time(scan.stamp));
+    header.frame_id("map");
+    header.seq(statuses_++);
+    header.vehicle_id(vehicle_);
+    s.header(header);
+    s.scan_seq(scan.sequence);
+    s.outcome(to_string(report.outcome));
+    s.iterations(report.iterations);
+    s.error_before(report.error_before);
+    s.error_after(report.error_after);
+    s.points_used(static_cast<std::uint32_t>(report.points_used));
+    s.map_updated(report.map_updated);
+    s.map_size(report.map_size);
+    s.latency_ms(latency_ms);
+    s.processing_ms(processing_ms);
+    s.scans_received(queue_.scans_received());
+    s.scans_skipped(queue_.scans_skipped());
+    s.scans_rejected(rejected_);
+    return s;
+  }
+
+  void print_summary() const {
+    std::cerr << "slam_matcher: " << queue_.scans_received() << " scans received, "
+              << queue_.scans_skipped() << " skipped (a fresher one was waiting), " << poses_
+              << " poses published, " << rejected_ << " rejected, map " << slam_.map().size()
+              << " points from " << keyframes_ << " keyframes\n";
+  }
+
+  std::string vehicle_;
+  sim::Scenario scenario_;
+  SlamConfig config_;
+  std::shared_ptr<const ScanGeometry> geometry_;
+  SlamPipeline slam_;
+  matcher::ScanQueue queue_;
+  dds::Participant participant_;
+  dds::Writer<msg::PoseWithCovarianceStampedPubSubType> pose_;
+  dds::Writer<msg::MapPointsPubSubType> map_points_;
+  dds::Writer<msg::MatcherStatusPubSubType> status_;
+  dds::Reader<msg::LaserScanPubSubType> scans_;
+  dds::Reader<msg::ImuPubSubType> imu_;
+  std::uint64_t poses_ = 0;
+  std::uint32_t keyframes_ = 0;
+  std::uint64_t statuses_ = 0;
+  std::uint64_t rejected_ = 0;
+};
+
+void apply_own_config(const CLI::App& app, const io::YamlReader& section, MatcherOptions& o) {
+  section.expect_keys_only({"sensor", "slam_config", "initial_position"});
+  if (process::unset(app, "--sensor")) o.sensor = section.get_string_or("sensor", o.sensor);
+  if (process::unset(app, "--slam-config")) {
+    o.slam_config = section.get_string_or("slam_config", o.slam_config);
+  }
+  if (process::unset(app, "--initial-position") && section.has("initial_position")) {
+    const Vec3 p = section.get_vec3("initial_position");
+    o.initial_position = {p.x(), p.y(), p.z()};
+  }
+}
+
+}  // namespace
+}  // namespace uavslam
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "slam_matcher: subscribes scan and imu, runs the SLAM pipeline, publishes pose, "
+      "map_points and matcher_status"};
+  uavslam::process::NodeOptions node;
+  uavslam::MatcherOptions options;
+  uavslam::process::add_node_options(app, node);
+  app.add_option("--sensor", options.sensor,
+                 "YAML whose `lidar` section describes the scanner (a scenario file)")
+      ->capture_default_str();
+  app.add_option("--slam-config", options.slam_config,
+                 "SLAM parameters YAML (default: the built-in defaults, as config/slam.yaml)");
+  app.add_option("--initial-position", options.initial_position,
+                 "x,y,z of the body at the first scan (default: the scenario's first waypoint)")
+      ->delimiter(',')
+      ->expected(3);
+  CLI11_PARSE(app, argc, argv);
+  uavslam::process::install_stop_handler();
+  return uavslam::process::run_node("slam_matcher", [&] {
+    if (const auto section = uavslam::process::apply_node_config(app, node, "slam_matcher")) {
+      uavslam::apply_own_config(app, *section, options);
+    }
+    uavslam::MatcherNode matcher(node, options);
+    return matcher.run();
+  });
+}

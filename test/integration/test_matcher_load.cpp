@@ -1,0 +1,143 @@
+// The matcher falling behind: the sensors publish the short flight at 4x real time (160 scans/s)
+// to a matcher made slow on purpose (brute-force search, 20 iterations: tens of ms per scan). It
+// must work on the freshest scan and count the rest as skipped, never queue them: so it reaches
+// the flight's last scan soon after the LiDAR stops (a queue would take minutes to drain) and its
+// memory stays bounded.
+#include <condition_variable>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <msg/MatcherStatusPubSubTypes.h>
+
+#include "ChildProcess.hpp"
+#include "dds/Participant.hpp"
+#include "dds/Profiles.hpp"
+#include "dds/Reader.hpp"
+#include "dds/Topics.hpp"
+
+namespace uavslam {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+constexpr int kDomain = 186;              // this test's own DDS domain
+constexpr std::uint64_t kLastScan = 800;  // short.yaml: 20 s at 40 Hz, sequences 0..800
+const std::string kScenario = std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/short.yaml";
+
+// The flight's start on the system clock, shared by both sensor processes (--start-at), far
+// enough ahead for them to discover the matcher first.
+std::string shared_start_time() {
+  const auto now = std::chrono::system_clock::now().time_since_epoch();
+  return std::to_string(std::chrono::duration<double>(now).count() + 3.0);
+}
+
+std::string binary(const char* name) {
+  return std::string(UAVSLAM_BIN_DIR) + "/" + name;
+}
+
+// Peak resident memory of a process in kB (VmHWM in /proc/<pid>/status), 0 if unreadable.
+long peak_rss_kb(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string key;
+  long value = 0;
+  while (status >> key) {
+    if (key == "VmHWM:" && status >> value) return value;
+    status.ignore(1 << 12, '\n');
+  }
+  return 0;
+}
+
+struct LatestStatus {
+  std::mutex mutex;
+  std::condition_variable changed;
+  msg::MatcherStatus last;
+  std::size_t count = 0;
+};
+
+class MatcherLoad : public ::testing::Test {
+ protected:
+  fs::path dir;
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "uavslam_load_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir = pattern;
+  }
+  void TearDown() override {
+    fs::remove_all(dir);
+    if (std::system("fastdds shm clean > /dev/null 2>&1") != 0) {
+      ADD_FAILURE() << "fastdds shm clean failed";
+    }
+  }
+  std::vector<std::string> node(const char* name, std::vector<std::string> extra) const {
+    std::vector<std::string> argv{binary(name), "--domain", std::to_string(kDomain)};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    return argv;
+  }
+  std::string log(const char* name) const { return (dir / (std::string(name) + ".log")).string(); }
+};
+
+TEST_F(MatcherLoad, FallingBehindItMatchesTheFreshestScanAndSkipsTheRest) {
+  const std::string slow_config = (dir / "slow.yaml").string();
+  std::ofstream(slow_config) << "icp: {iterations: 20}\nnearest_neighbour: {index: brute}\n";
+
+  dds::Participant ground(kDomain, dds::default_profiles_path(), "uavslam_loopback", "test");
+  LatestStatus status;
+  dds::Reader<msg::MatcherStatusPubSubType> status_reader(
+      ground, dds::topic_name("uav1", dds::kMatcherStatusTopic), "status_reader",
+      [&](const msg::MatcherStatus& m, const eprosima::fastdds::dds::SampleInfo&) {
+        {
+          std::lock_guard<std::mutex> lock(status.mutex);
+          status.last = m;
+          ++status.count;
+        }
+        status.changed.notify_all();
+      });
+
+  test::ChildProcess matcher(
+      node("slam_matcher", {"--sensor", kScenario, "--slam-config", slow_config}),
+      log("slam_matcher"));
+  ASSERT_TRUE(status_reader.wait_for_matched(1, 30s)) << matcher.log();
+  const std::string start_at = shared_start_time();
+  test::ChildProcess imu(
+      node("imu_bridge", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
+                          "--start-at", start_at}),
+      log("imu_bridge"));
+  test::ChildProcess lidar(
+      node("lidar_driver", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
+                            "--start-at", start_at}),
+      log("lidar_driver"));
+  ASSERT_TRUE(lidar.wait(60s)) << lidar.log();
+  ASSERT_EQ(lidar.exit_code(), 0) << lidar.log();
+
+  // A matcher that queued every scan would still be ~700 scans (tens of seconds) behind here.
+  {
+    std::unique_lock<std::mutex> lock(status.mutex);
+    ASSERT_TRUE(
+        status.changed.wait_for(lock, 5s, [&] { return status.last.scan_seq() >= kLastScan; }))
+        << "last matched scan " << status.last.scan_seq() << " of " << kLastScan << "\n"
+        << matcher.log();
+  }
+  const long peak_kb = peak_rss_kb(matcher.pid());
+  EXPECT_EQ(matcher.stop(10s), 0) << matcher.log();
+
+  std::lock_guard<std::mutex> lock(status.mutex);
+  const msg::MatcherStatus& last = status.last;
+  std::cerr << "received " << last.scans_received() << ", skipped " << last.scans_skipped()
+            << ", statuses " << status.count << ", peak RSS " << peak_kb / 1024 << " MB\n";
+  EXPECT_GT(last.scans_skipped(), last.scans_received() / 2)
+      << "the matcher was meant to fall behind";
+  // Every status is a matched scan; the rest of what was received was skipped unprocessed.
+  EXPECT_GE(last.scans_received() - last.scans_skipped(), status.count);
+  // The map of a 20 s flight and the pipeline need well under this; a scan backlog would not.
+  EXPECT_GT(peak_kb, 0);
+  EXPECT_LT(peak_kb, 256 * 1024);
+}
+
+}  // namespace
+}  // namespace uavslam

@@ -1,0 +1,171 @@
+// The whole system as users run it: `uavslam launch` starts the six processes of a launch file
+// (ground station, map server, recorder, matcher, IMU bridge, LiDAR driver) on the test's own
+// domain, the sensors fly the short scenario, the launcher stops everything in reverse order, and
+// every output is checked; and a ground station that joins after the flight still gets the map
+// from the real map server.
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "ChildProcess.hpp"
+#include "eval/TrajectoryMetrics.hpp"
+#include "io/OctreeFile.hpp"
+#include "io/PlyFile.hpp"
+#include "io/SampleLog.hpp"
+#include "io/TumFile.hpp"
+
+namespace uavslam {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+constexpr int kLaunchDomain = 188;    // the launched system
+constexpr int kLateJoinDomain = 189;  // the late-joining ground station
+const std::string kSource = UAVSLAM_SOURCE_DIR;
+const std::string kScenario = kSource + "/config/scenarios/short.yaml";
+
+std::string binary(const char* name) {
+  return std::string(UAVSLAM_BIN_DIR) + "/" + name;
+}
+
+std::string shared_start_time() {
+  const auto now = std::chrono::system_clock::now().time_since_epoch();
+  return std::to_string(std::chrono::duration<double>(now).count() + 3.0);
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// Waits until `text` appears in a process's log (it prints status lines as it goes).
+bool wait_for_log(const test::ChildProcess& process, const std::string& text,
+                  std::chrono::seconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (process.log().find(text) != std::string::npos) return true;
+    std::this_thread::sleep_for(50ms);
+  }
+  return false;
+}
+
+class System : public ::testing::Test {
+ protected:
+  fs::path dir;
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "uavslam_system_XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    dir = pattern;
+  }
+  void TearDown() override {
+    fs::remove_all(dir);
+    if (std::system("fastdds shm clean > /dev/null 2>&1") != 0) {
+      ADD_FAILURE() << "fastdds shm clean failed";
+    }
+  }
+  std::string path(const std::string& name) const { return (dir / name).string(); }
+};
+
+TEST_F(System, TheLauncherFliesTheSixProcessesAndEveryOutputIsWritten) {
+  const std::string sensor =
+      "[--scenario, " + kScenario + ", --rate, \"4\", --start-at, \"{start_at}\", ";
+  std::ofstream(path("flight.yaml"))
+      << "domain: " << kLaunchDomain << "\nvehicle: uav7\nlog_dir: " << path("logs")
+      << "\nprocesses:\n"
+      << "  - {name: ground_station, args: [--out, " << path("gcs") << "]}\n"
+      << "  - {name: map_server, args: [--out, " << path("map") << "]}\n"
+      << "  - {name: recorder, args: [--out, " << path("flight.uavlog") << "]}\n"
+      << "  - {name: slam_matcher, args: [--sensor, " << kScenario << ", --slam-config, " << kSource
+      << "/config/slam.yaml]}\n"
+      << "  - {name: imu_bridge, args: " << sensor << "--wait-for-subscribers, \"2\"]}\n"
+      << "  - {name: lidar_driver, until_exit: true, args: " << sensor
+      << "--wait-for-subscribers, \"3\", --groundtruth, " << path("groundtruth.tum") << "]}\n";
+
+  test::ChildProcess launch({binary("uavslam"), "launch", path("flight.yaml")}, path("launch.log"));
+  ASSERT_TRUE(launch.wait(120s)) << launch.log();
+  ASSERT_EQ(launch.exit_code(), 0) << launch.log();
+  // Every process ended cleanly, in reverse order of starting, the ground station last.
+  const std::string log = launch.log();
+  EXPECT_LT(log.find("launch: slam_matcher exit 0"), log.find("launch: map_server exit 0")) << log;
+  EXPECT_LT(log.find("launch: map_server exit 0"), log.find("launch: ground_station exit 0"))
+      << log;
+
+  const std::vector<Pose> truth = io::read_tum(path("groundtruth.tum"));
+  const std::vector<Pose> poses = io::read_tum(path("gcs/trajectory.tum"));
+  EXPECT_EQ(truth.size(), 801u) << "every scan of the 20 s flight published";
+  EXPECT_GE(poses.size(), 720u) << "of 801 scans, at the ground station";
+  const eval::TrajectoryErrors errors = eval::compare_trajectories(poses, truth);
+  EXPECT_LT(errors.ate_horizontal_rmse, 0.10);
+  EXPECT_LT(errors.ate_vertical_rmse, 0.10);
+
+  // The map server's final map reached the ground station.
+  const nlohmann::json summary = read_json(path("gcs/summary.json"));
+  EXPECT_GT(summary["map"]["snapshots_received"].get<int>(), 0);
+  const auto station_map = io::read_bt(path("gcs/map.bt"));
+  const auto server_map = io::read_bt(path("map/map.bt"));
+  EXPECT_GT(server_map->getNumLeafNodes(), 1000u);
+  EXPECT_EQ(summary["map"]["map_points"].get<std::size_t>(),
+            io::read_ply(path("map/map_points.ply")).size());
+  EXPECT_GT(summary["latency_scan_to_pose"]["count"].get<int>(), 0);
+  EXPECT_TRUE(fs::exists(path("gcs/map_topdown.png")));
+
+  // The recorder kept every sample the sensors published (loopback, nothing lost).
+  std::map<std::string, std::uint64_t> recorded;
+  for (const io::ChannelSummary& c : io::summarize(io::read_sample_log(path("flight.uavlog")))) {
+    recorded[c.channel.topic] = c.samples;
+  }
+  EXPECT_EQ(recorded["uav7/scan"], 801u);
+  EXPECT_EQ(recorded["uav7/imu"], 4001u);
+}
+
+TEST_F(System, AGroundStationJoiningAfterTheFlightGetsTheMap) {
+  auto node = [&](const char* name, std::vector<std::string> extra) {
+    std::vector<std::string> argv{binary(name), "--domain", std::to_string(kLateJoinDomain)};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    return argv;
+  };
+  test::ChildProcess map_server(node("map_server", {"--out", path("map")}), path("map_server.log"));
+  test::ChildProcess matcher(node("slam_matcher", {"--sensor", kScenario}), path("matcher.log"));
+  const std::string start_at = shared_start_time();
+  test::ChildProcess imu(
+      node("imu_bridge", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
+                          "--start-at", start_at}),
+      path("imu.log"));
+  test::ChildProcess lidar(
+      node("lidar_driver", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
+                            "--start-at", start_at}),
+      path("lidar.log"));
+  ASSERT_TRUE(lidar.wait(60s)) << lidar.log();
+  ASSERT_EQ(lidar.exit_code(), 0) << lidar.log();
+  EXPECT_EQ(matcher.stop(10s), 0) << matcher.log();
+
+  // The flight is over; now the ground station starts.
+  test::ChildProcess station(
+      node("ground_station", {"--out", path("gcs"), "--no-latency", "--status-period", "0.2"}),
+      path("gcs.log"));
+  ASSERT_TRUE(wait_for_log(station, "(snapshot", 30s)) << station.log();
+  EXPECT_EQ(station.stop(10s), 0) << station.log();
+  EXPECT_EQ(map_server.stop(10s), 0) << map_server.log();
+
+  const nlohmann::json summary = read_json(path("gcs/summary.json"));
+  EXPECT_EQ(summary["map"]["snapshots_received"].get<int>(), 1) << "only the latest, once";
+  // The snapshot it got is the map server's whole map: the same occupied cells.
+  const auto station_map = io::read_bt(path("gcs/map.bt"));
+  const auto server_map = io::read_bt(path("map/map.bt"));
+  const std::size_t occupied = io::occupied_cell_centres(*server_map).size();
+  EXPECT_GT(occupied, 1000u);
+  EXPECT_EQ(io::occupied_cell_centres(*station_map).size(), occupied);
+}
+
+}  // namespace
+}  // namespace uavslam

@@ -1,0 +1,171 @@
+// The QoS profile file: it loads, it defines every profile the processes use, the default
+// participant keeps DDS on loopback, and every way of getting it wrong is a DdsError that names
+// the file or the profile.
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/xmlparser/XMLProfileManager.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <msg/LaserScanPubSubTypes.h>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+
+#include "dds/DdsError.hpp"
+#include "dds/Participant.hpp"
+#include "dds/Profiles.hpp"
+#include "dds/Reader.hpp"
+#include "dds/Writer.hpp"
+
+namespace uavslam::dds {
+namespace {
+
+namespace fdds = eprosima::fastdds::dds;
+using eprosima::fastrtps::types::ReturnCode_t;
+using testing::HasSubstr;
+using testing::IsSupersetOf;
+
+const std::vector<std::string> kClasses{"sensor", "state", "map_points", "map", "status"};
+
+// A QoS file written by the test, removed afterwards.
+class TempXml {
+ public:
+  TempXml(const std::string& name, const std::string& text)
+      : path_(testing::TempDir() + "uavslam_qos_" + name + ".xml") {
+    std::ofstream(path_) << text;
+  }
+  ~TempXml() { std::remove(path_.c_str()); }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+std::string error_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const DdsError& e) {
+    return e.what();
+  }
+  return "(no DdsError)";
+}
+
+TEST(QosProfiles, TheShippedFileLoads) {
+  EXPECT_NO_THROW(load_profiles(default_profiles_path()));
+  EXPECT_NO_THROW(load_profiles(default_profiles_path())) << "a second load is a no-op";
+}
+
+TEST(QosProfiles, TheShippedFileNamesEveryClassAndTheLoopbackParticipant) {
+  const std::string path = default_profiles_path();
+  EXPECT_EQ(profile_names(path, "participant"), std::vector<std::string>{"uavslam_loopback"});
+  std::vector<std::string> writers, readers;
+  for (const std::string& c : kClasses) {
+    writers.push_back(c + "_writer");
+    readers.push_back(c + "_reader");
+  }
+  EXPECT_THAT(profile_names(path, "data_writer"), IsSupersetOf(writers));
+  EXPECT_THAT(profile_names(path, "data_reader"), IsSupersetOf(readers));
+}
+
+// Every profile the file declares (by the text scan of profile_names) is one Fast DDS knows, so
+// the names in error messages and the profiles really loaded cannot drift apart. Asked of Fast
+// DDS's profile store directly: no participant, no traffic.
+TEST(QosProfiles, EveryDeclaredProfileIsDefinedInFastDds) {
+  using eprosima::fastrtps::xmlparser::XMLP_ret;
+  using eprosima::fastrtps::xmlparser::XMLProfileManager;
+  const std::string path = default_profiles_path();
+  load_profiles(path);
+  for (const std::string& name : profile_names(path, "participant")) {
+    eprosima::fastrtps::ParticipantAttributes attributes;
+    EXPECT_EQ(XMLProfileManager::fillParticipantAttributes(name, attributes), XMLP_ret::XML_OK)
+        << name;
+  }
+  for (const std::string& name : profile_names(path, "data_writer")) {
+    eprosima::fastrtps::PublisherAttributes attributes;
+    EXPECT_EQ(XMLProfileManager::fillPublisherAttributes(name, attributes), XMLP_ret::XML_OK)
+        << name;
+  }
+  for (const std::string& name : profile_names(path, "data_reader")) {
+    eprosima::fastrtps::SubscriberAttributes attributes;
+    EXPECT_EQ(XMLProfileManager::fillSubscriberAttributes(name, attributes), XMLP_ret::XML_OK)
+        << name;
+  }
+}
+
+// The network rule as configuration: no built-in transports, shared memory, and UDP only on
+// 127.0.0.1 (tcpdump confirms it on the wire: test/net/check_loopback_only.sh).
+TEST(QosProfiles, TheDefaultParticipantUsesLoopbackTransportsOnly) {
+  load_profiles(default_profiles_path());
+  fdds::DomainParticipantQos qos;
+  ASSERT_EQ(fdds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(
+                "uavslam_loopback", qos),
+            ReturnCode_t::RETCODE_OK);
+  EXPECT_FALSE(qos.transport().use_builtin_transports);
+  int shm = 0, udp = 0;
+  for (const auto& descriptor : qos.transport().user_transports) {
+    if (dynamic_cast<eprosima::fastdds::rtps::SharedMemTransportDescriptor*>(descriptor.get())) {
+      ++shm;
+    } else if (const auto* u = dynamic_cast<eprosima::fastdds::rtps::UDPv4TransportDescriptor*>(
+                   descriptor.get())) {
+      ++udp;
+      EXPECT_EQ(u->interfaceWhiteList, std::vector<std::string>{"127.0.0.1"});
+    } else {
+      ADD_FAILURE() << "unexpected transport in uavslam_loopback";
+    }
+  }
+  EXPECT_EQ(shm, 1);
+  EXPECT_EQ(udp, 1);
+}
+
+TEST(QosProfiles, AMalformedFileIsADdsErrorNamingIt) {
+  const TempXml broken("malformed", "<dds><profiles><participant profile_name=\"p\">");
+  EXPECT_THAT(error_of([&] { load_profiles(broken.path()); }),
+              HasSubstr("cannot load QoS profiles from '" + broken.path() + "'"));
+}
+
+TEST(QosProfiles, ABadValueIsADdsErrorNamingTheFile) {
+  const TempXml bad_value(
+      "bad_value",
+      "<dds><profiles xmlns=\"http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles\">"
+      "<data_writer profile_name=\"w\"><qos><reliability><kind>SOMETIMES</kind></reliability>"
+      "</qos></data_writer></profiles></dds>");
+  EXPECT_THAT(error_of([&] { load_profiles(bad_value.path()); }), HasSubstr(bad_value.path()));
+}
+
+TEST(QosProfiles, AMissingFileIsADdsErrorNamingIt) {
+  const std::string missing = testing::TempDir() + "uavslam_no_such_profiles.xml";
+  EXPECT_THAT(error_of([&] { load_profiles(missing); }),
+              HasSubstr("'" + missing + "': no such file"));
+}
+
+TEST(QosProfiles, AnUnknownParticipantProfileIsADdsErrorNamingIt) {
+  // The profile is checked before anything joins the domain.
+  const std::string message = error_of(
+      [] { Participant participant(178, default_profiles_path(), "no_such_participant"); });
+  EXPECT_THAT(message, HasSubstr("unknown participant profile 'no_such_participant'"));
+  EXPECT_THAT(message, HasSubstr("'uavslam_loopback'")) << "lists the profiles there";
+}
+
+TEST(QosProfiles, UnknownWriterAndReaderProfilesAreDdsErrorsNamingThem) {
+  Participant participant(178, default_profiles_path());
+  const std::string writer_error = error_of([&] {
+    Writer<msg::LaserScanPubSubType> writer(participant, "qos_test/unknown", "no_such_writer");
+  });
+  EXPECT_THAT(writer_error, HasSubstr("unknown writer profile 'no_such_writer'"));
+  EXPECT_THAT(writer_error, HasSubstr("'sensor_writer'")) << "lists the profiles there";
+  const std::string reader_error = error_of([&] {
+    Reader<msg::LaserScanPubSubType> reader(participant, "qos_test/unknown", "no_such_reader",
+                                            nullptr);
+  });
+  EXPECT_THAT(reader_error, HasSubstr("unknown reader profile 'no_such_reader'"));
+  EXPECT_THAT(reader_error, HasSubstr("'sensor_reader'"));
+}
+
+}  // namespace
+}  // namespace uavslam::dds
