@@ -3,6 +3,8 @@
 BUILD      ?= build
 BUILD_ASAN ?= build-asan
 JOBS       ?= $(shell nproc)
+# ccache keys on paths relative to the checkout, so a fresh clone (CI) reuses earlier builds.
+export CCACHE_BASEDIR := $(CURDIR)
 UAVSLAM    := $(BUILD)/bin/uavslam
 
 .PHONY: all deps configure build demo simulate test test-unit test-asan bench bench-latency sweep \
@@ -39,7 +41,7 @@ test: build
 
 test-asan: deps
 	cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVSLAM_SANITIZE=ON
-	cmake --build $(BUILD_ASAN) -j$(JOBS)
+	cmake --build $(BUILD_ASAN) -j$(JOBS) --target unit_tests
 	cd $(BUILD_ASAN) && ctest -L unit --output-on-failure -j$(JOBS)
 
 # Speed: the matcher benchmark's tables and the end-to-end latency (README "Speed").

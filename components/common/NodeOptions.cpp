@@ -1,8 +1,41 @@
 #include "common/NodeOptions.hpp"
 
+#include <algorithm>
+
 #include "dds/Profiles.hpp"
+#include "dds/Topics.hpp"
 
 namespace uavslam::process {
+namespace {
+
+const std::vector<std::string> kTopics{dds::kScanTopic, dds::kImuTopic,
+                                       dds::kPoseTopic, dds::kMapPointsTopic,
+                                       dds::kMapTopic,  dds::kMatcherStatusTopic};
+
+bool is_topic(const std::string& base) {
+  return std::find(kTopics.begin(), kTopics.end(), base) != kTopics.end();
+}
+
+// "--profile scan=my_sensor_reader" -> profiles["scan"].
+void parse_profile_flags(NodeOptions& options) {
+  for (const std::string& flag : options.profile_flags) {
+    const std::size_t eq = flag.find('=');
+    const std::string topic = flag.substr(0, eq);
+    if (eq == std::string::npos || eq + 1 == flag.size() || !is_topic(topic)) {
+      throw io::ConfigError("--profile '" + flag +
+                            "': expected TOPIC=PROFILE with TOPIC one of scan, imu, pose, "
+                            "map_points, map, matcher_status");
+    }
+    options.profiles[topic] = flag.substr(eq + 1);
+  }
+}
+
+}  // namespace
+
+std::string NodeOptions::profile(const std::string& base, const std::string& class_default) const {
+  const auto chosen = profiles.find(base);
+  return chosen == profiles.end() ? class_default : chosen->second;
+}
 
 void add_node_options(CLI::App& app, NodeOptions& options) {
   app.add_option("--config", options.config_file,
@@ -18,6 +51,9 @@ void add_node_options(CLI::App& app, NodeOptions& options) {
   app.add_option("--participant-profile", options.participant_profile,
                  "participant profile in the XML file")
       ->capture_default_str();
+  app.add_option("--profile", options.profile_flags,
+                 "TOPIC=PROFILE: the writer/reader profile of the XML file for one topic, "
+                 "instead of its class's (repeatable; e.g. scan=sensor_reader)");
 }
 
 std::string profiles_path(const NodeOptions& options) {
@@ -30,10 +66,20 @@ bool unset(const CLI::App& app, const std::string& flag) {
 
 std::optional<io::YamlReader> apply_node_config(const CLI::App& app, NodeOptions& options,
                                                 const std::string& node) {
+  parse_profile_flags(options);
   if (options.config_file.empty()) return std::nullopt;
   const io::YamlReader file = io::YamlReader::from_file(options.config_file, "node config");
   if (const auto dds = file.find("dds")) {
-    dds->expect_keys_only({"domain", "vehicle", "qos_file", "participant_profile"});
+    dds->expect_keys_only({"domain", "vehicle", "qos_file", "participant_profile", "profiles"});
+    if (const auto profiles = dds->find("profiles")) {
+      profiles->expect_keys_only(kTopics);
+      for (const std::string& topic : kTopics) {
+        // The command line wins over the file.
+        if (profiles->has(topic) && !options.profiles.count(topic)) {
+          options.profiles[topic] = profiles->get_string(topic);
+        }
+      }
+    }
     if (unset(app, "--domain")) {
       options.domain = dds->get_int_or("domain", options.domain, io::NumberRange::between(0, 232));
     }

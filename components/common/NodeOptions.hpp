@@ -3,8 +3,10 @@
 // whatever the command line did not set (flags win over the file).
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -18,9 +20,15 @@ struct NodeOptions {
   std::string qos_file;  // empty: dds::default_profiles_path()
   std::string participant_profile = "uavslam_loopback";
   std::string config_file;
+  std::vector<std::string> profile_flags;       // --profile TOPIC=PROFILE, as given
+  std::map<std::string, std::string> profiles;  // topic (base name) -> writer/reader profile
+
+  // The writer or reader profile for topic `base` ("scan", "pose", ...): the one chosen by
+  // --profile or the config's dds.profiles, else `class_default` (e.g. "sensor_reader").
+  std::string profile(const std::string& base, const std::string& class_default) const;
 };
 
-// Registers --config, --domain, --vehicle, --qos, --participant-profile.
+// Registers --config, --domain, --vehicle, --qos, --participant-profile, --profile.
 void add_node_options(CLI::App& app, NodeOptions& options);
 
 // After parsing: reads options.config_file (if any), fills the node options the command line left

@@ -74,6 +74,7 @@ class GroundStation {
  public:
   GroundStation(const process::NodeOptions& node, const StationOptions& options)
       : options_(options),
+        node_(node),
         vehicle_(node.vehicle),
         participant_(node.domain, process::profiles_path(node), node.participant_profile,
                      "ground_station") {
@@ -103,19 +104,23 @@ class GroundStation {
  private:
   void subscribe() {
     pose_ = std::make_unique<PoseReader>(
-        participant_, dds::topic_name(vehicle_, dds::kPoseTopic), "state_reader",
+        participant_, dds::topic_name(vehicle_, dds::kPoseTopic),
+        node_.profile(dds::kPoseTopic, "state_reader"),
         [this](const msg::PoseWithCovarianceStamped& m, const SampleInfo&) { on_pose(m); });
     map_ = std::make_unique<MapReader>(
-        participant_, dds::topic_name(vehicle_, dds::kMapTopic), "map_reader",
+        participant_, dds::topic_name(vehicle_, dds::kMapTopic),
+        node_.profile(dds::kMapTopic, "map_reader"),
         [this](const msg::OccupancyMap& m, const SampleInfo&) { on_map(m); });
     status_ = std::make_unique<StatusReader>(
-        participant_, dds::topic_name(vehicle_, dds::kMatcherStatusTopic), "status_reader",
+        participant_, dds::topic_name(vehicle_, dds::kMatcherStatusTopic),
+        node_.profile(dds::kMatcherStatusTopic, "status_reader"),
         [this](const msg::MatcherStatus& m, const SampleInfo&) {
           record_.set_matcher_status(counters_of(m));
         });
     if (options_.latency) {
       scans_ = std::make_unique<ScanReader>(
-          participant_, dds::topic_name(vehicle_, dds::kScanTopic), "sensor_reader",
+          participant_, dds::topic_name(vehicle_, dds::kScanTopic),
+          node_.profile(dds::kScanTopic, "sensor_reader"),
           [this](const msg::LaserScan& m, const SampleInfo& info) {
             record_.add_scan(m.header().seq(), to_seconds(info.source_timestamp));
           });
@@ -194,6 +199,7 @@ class GroundStation {
   using ScanReader = dds::Reader<msg::LaserScanPubSubType>;
 
   StationOptions options_;
+  process::NodeOptions node_;
   std::string vehicle_;
   ground_station::FlightRecord record_;
   dds::Participant participant_;

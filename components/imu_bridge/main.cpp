@@ -7,6 +7,7 @@
 #include <msg/ImuPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
+#include "common/IncompatibleQos.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/PacedStream.hpp"
 #include "common/RunNode.hpp"
@@ -29,19 +30,24 @@ int publish_imu(const process::NodeOptions& node, const process::SimSourceOption
   dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
                                "imu_bridge");
   const std::string topic = dds::topic_name(node.vehicle, dds::kImuTopic);
-  dds::Writer<msg::ImuPubSubType> writer(participant, topic, "sensor_writer");
+  dds::Writer<msg::ImuPubSubType> writer(participant, topic,
+                                         node.profile(dds::kImuTopic, "sensor_writer"));
   std::cerr << "imu_bridge: publishing " << topic << " from " << scenario.name << " at "
             << scenario.imu.rate_hz * o.rate << " Hz (domain " << node.domain << ")\n";
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "imu_bridge")) return 1;
   const dds::Source source{"imu", node.vehicle};
   std::uint64_t seq = 0;
+  process::QosWatch qos("imu_bridge");
   const process::StreamCounts counts = process::publish_paced<ImuSample>(
       o, simulator.start_time(), [&](ImuSample& sample) { return simulator.next_imu(sample); },
-      [&](const ImuSample& sample) { return writer.write(dds::to_msg(sample, seq++, source)); });
+      [&](const ImuSample& sample) {
+        qos.output(writer);
+        return writer.write(dds::to_msg(sample, seq++, source));
+      });
   std::cerr << "imu_bridge: published " << counts.published << " samples, " << counts.missed
             << " overdue and skipped" << (process::stop_requested() ? " (stopped)" : "") << "\n";
-  return 0;
+  return qos.exit_code();
 }
 
 }  // namespace

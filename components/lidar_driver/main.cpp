@@ -7,6 +7,7 @@
 #include <msg/LaserScanPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
+#include "common/IncompatibleQos.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/PacedStream.hpp"
 #include "common/RunNode.hpp"
@@ -34,23 +35,26 @@ int publish_scans(const process::NodeOptions& node, const process::SimSourceOpti
   dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
                                "lidar_driver");
   const std::string topic = dds::topic_name(node.vehicle, dds::kScanTopic);
-  dds::Writer<msg::LaserScanPubSubType> writer(participant, topic, "sensor_writer");
+  dds::Writer<msg::LaserScanPubSubType> writer(participant, topic,
+                                               node.profile(dds::kScanTopic, "sensor_writer"));
   std::cerr << "lidar_driver: publishing " << topic << " from " << scenario.name << " at "
             << scenario.lidar.rate_hz * o.rate << " Hz (domain " << node.domain << ")\n";
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
   const dds::Source source{"laser", node.vehicle};
   std::vector<Pose> truth;
+  process::QosWatch qos("lidar_driver");
   const process::StreamCounts counts = process::publish_paced<Scan>(
       o, simulator.start_time(), [&](Scan& scan) { return simulator.next_scan(scan); },
       [&](const Scan& scan) {
+        qos.output(writer);
         if (!groundtruth_path.empty()) truth.push_back(simulator.ground_truth_at(scan.stamp));
         return writer.write(dds::to_msg(scan, -fov / 2.0, increment, source));
       });
   if (!groundtruth_path.empty()) io::write_tum(groundtruth_path, truth);
   std::cerr << "lidar_driver: published " << counts.published << " scans, " << counts.missed
             << " overdue and skipped" << (process::stop_requested() ? " (stopped)" : "") << "\n";
-  return 0;
+  return qos.exit_code();
 }
 
 }  // namespace

@@ -80,13 +80,15 @@ class MapServerNode {
         octree_(make_octree(o.occupancy)),
         participant_(node.domain, process::profiles_path(node), node.participant_profile,
                      "map_server"),
-        map_(participant_, dds::topic_name(vehicle_, dds::kMapTopic), "map_writer"),
+        map_(participant_, dds::topic_name(vehicle_, dds::kMapTopic),
+             node.profile(dds::kMapTopic, "map_writer")),
         map_points_(participant_, dds::topic_name(vehicle_, dds::kMapPointsTopic),
-                    "map_points_reader",
+                    node.profile(dds::kMapPointsTopic, "map_points_reader"),
                     [this](const msg::MapPoints& m, const eprosima::fastdds::dds::SampleInfo&) {
                       queue_.push(m);
                     }),
-        poses_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic), "state_reader",
+        poses_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic),
+               node.profile(dds::kPoseTopic, "state_reader"),
                [this](const msg::PoseWithCovarianceStamped& m,
                       const eprosima::fastdds::dds::SampleInfo&) {
                  std::lock_guard<std::mutex> lock(pose_mutex_);
@@ -111,14 +113,14 @@ class MapServerNode {
     // OctoMap's own progress output on writing goes before our summary line.
     if (!options_.out.empty()) write_files();
     print_summary();
-    return 0;
+    return qos_.exit_code();
   }
 
  private:
-  void check_qos() const {
-    process::throw_if_incompatible(map_);
-    process::throw_if_incompatible(map_points_);
-    process::throw_if_incompatible(poses_);
+  void check_qos() {
+    qos_.input(map_points_);
+    qos_.input(poses_);
+    qos_.output(map_);
   }
 
   void ingest(const std::vector<msg::MapPoints>& keyframes) {
@@ -207,6 +209,7 @@ class MapServerNode {
   std::mutex pose_mutex_;
   Pose last_pose_;
   map_server::KeyframeQueue queue_;
+  process::QosWatch qos_{"map_server"};
   dds::Participant participant_;
   dds::Writer<msg::OccupancyMapPubSubType> map_;
   dds::Reader<msg::MapPointsPubSubType> map_points_;

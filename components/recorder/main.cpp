@@ -75,8 +75,12 @@ class RecorderNode {
         queue_(static_cast<std::size_t>(o.queue_capacity)) {
     for (const std::string& base : o.topics) {
       const std::string topic = dds::topic_name(node.vehicle, base);
-      if (base == dds::kScanTopic) scans_ = subscribe<msg::LaserScanPubSubType>(topic);
-      if (base == dds::kImuTopic) imu_ = subscribe<msg::ImuPubSubType>(topic);
+      if (base == dds::kScanTopic) {
+        scans_ = subscribe<msg::LaserScanPubSubType>(topic, node.profile(base, "sensor_reader"));
+      }
+      if (base == dds::kImuTopic) {
+        imu_ = subscribe<msg::ImuPubSubType>(topic, node.profile(base, "sensor_reader"));
+      }
     }
   }
   ~RecorderNode() { finish(); }
@@ -117,7 +121,8 @@ class RecorderNode {
   }
 
   template <typename PubSubType>
-  std::unique_ptr<dds::Reader<PubSubType>> subscribe(const std::string& topic) {
+  std::unique_ptr<dds::Reader<PubSubType>> subscribe(const std::string& topic,
+                                                     const std::string& profile) {
     auto type = std::make_shared<PubSubType>();
     const std::uint16_t channel = log_.add_channel(topic, type->getName());
     // counts_ is indexed by channel id: one new channel per subscribed topic, in order.
@@ -134,8 +139,7 @@ class RecorderNode {
         ++counts.dropped;
       }
     };
-    return std::make_unique<dds::Reader<PubSubType>>(participant_, topic, "sensor_reader",
-                                                     on_sample);
+    return std::make_unique<dds::Reader<PubSubType>>(participant_, topic, profile, on_sample);
   }
 
   // The writer thread: writes what waits, and flushes whenever it has caught up so the file on

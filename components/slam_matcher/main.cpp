@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "ScanQueue.hpp"
+#include "common/IncompatibleQos.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/RunNode.hpp"
 #include "common/StopRequest.hpp"
@@ -61,15 +62,19 @@ class MatcherNode {
         slam_(config_, initial_position(o)),
         participant_(node.domain, process::profiles_path(node), node.participant_profile,
                      "slam_matcher"),
-        pose_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic), "state_writer"),
+        pose_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic),
+              node.profile(dds::kPoseTopic, "state_writer")),
         map_points_(participant_, dds::topic_name(vehicle_, dds::kMapPointsTopic),
-                    "map_points_writer"),
-        status_(participant_, dds::topic_name(vehicle_, dds::kMatcherStatusTopic), "status_writer"),
-        scans_(participant_, dds::topic_name(vehicle_, dds::kScanTopic), "sensor_reader",
+                    node.profile(dds::kMapPointsTopic, "map_points_writer")),
+        status_(participant_, dds::topic_name(vehicle_, dds::kMatcherStatusTopic),
+                node.profile(dds::kMatcherStatusTopic, "status_writer")),
+        scans_(participant_, dds::topic_name(vehicle_, dds::kScanTopic),
+               node.profile(dds::kScanTopic, "sensor_reader"),
                [this](const msg::LaserScan& m, const eprosima::fastdds::dds::SampleInfo& info) {
                  queue_.push_scan({m, to_seconds(info.source_timestamp)});
                }),
-        imu_(participant_, dds::topic_name(vehicle_, dds::kImuTopic), "sensor_reader",
+        imu_(participant_, dds::topic_name(vehicle_, dds::kImuTopic),
+             node.profile(dds::kImuTopic, "sensor_reader"),
              [this](const msg::Imu& m, const eprosima::fastdds::dds::SampleInfo&) {
                queue_.push_imu(dds::from_msg(m));
              }) {}
@@ -78,15 +83,24 @@ class MatcherNode {
     std::cerr << "slam_matcher: matching " << dds::topic_name(vehicle_, dds::kScanTopic)
               << " with the sensor of " << scenario_.name << "\n";
     while (!process::stop_requested()) {
+      check_qos();
       auto work =
           queue_.wait_for_scan(std::chrono::milliseconds(100), std::chrono::milliseconds(20));
       if (work) process(*work);
     }
     print_summary();
-    return 0;
+    return qos_.exit_code();
   }
 
  private:
+  void check_qos() {
+    qos_.input(scans_);
+    qos_.input(imu_);
+    qos_.output(pose_);
+    qos_.output(map_points_);
+    qos_.output(status_);
+  }
+
   Vec3 initial_position(const MatcherOptions& o) const {
     if (o.initial_position.size() == 3) {
       return {o.initial_position[0], o.initial_position[1], o.initial_position[2]};
@@ -155,6 +169,7 @@ class MatcherNode {
   std::shared_ptr<const ScanGeometry> geometry_;
   SlamPipeline slam_;
   matcher::ScanQueue queue_;
+  process::QosWatch qos_{"slam_matcher"};
   dds::Participant participant_;
   dds::Writer<msg::PoseWithCovarianceStampedPubSubType> pose_;
   dds::Writer<msg::MapPointsPubSubType> map_points_;

@@ -1,21 +1,27 @@
 // The distributed system end to end: lidar_driver, imu_bridge and slam_matcher as separate OS
 // processes over DDS on loopback (their own domain), the test as a ground-side subscriber.
+#include <chrono>
 #include <condition_variable>
-#include <cstdlib>
-#include <filesystem>
+#include <fstream>
+#include <iostream>
 #include <mutex>
+#include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <msg/LaserScanPubSubTypes.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
 
-#include "ChildProcess.hpp"
+#include "ProcessTest.hpp"
+#include "common/ChildProcess.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Profiles.hpp"
 #include "dds/Reader.hpp"
 #include "dds/Topics.hpp"
+#include "dds/Writer.hpp"
 #include "eval/TrajectoryMetrics.hpp"
 #include "io/ScenarioFile.hpp"
 #include "sim/FlightSimulator.hpp"
@@ -23,45 +29,19 @@
 namespace uavslam {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-constexpr int kDomain = 171;  // this test's own DDS domain
+constexpr int kDomain = 171;              // this test's own DDS domain
+constexpr int kIncompatibleDomain = 190;  // the incompatible-QoS test's
 const std::string kScenario = std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/short.yaml";
 
-// The flight's start on the system clock, shared by both sensor processes (--start-at), far
-// enough ahead for them to discover the matcher first.
-std::string shared_start_time() {
-  const auto now = std::chrono::system_clock::now().time_since_epoch();
-  return std::to_string(std::chrono::duration<double>(now).count() + 3.0);
-}
-
-std::string binary(const char* name) {
-  return std::string(UAVSLAM_BIN_DIR) + "/" + name;
-}
-
-class DdsPipeline : public ::testing::Test {
+class DdsPipeline : public test::ProcessTest {
  protected:
-  fs::path dir;
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "uavslam_dds_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir = pattern;
+  // A process of this test: on its own domain, for vehicle uav1.
+  static std::vector<std::string> node(const char* name, std::vector<std::string> extra) {
+    extra.insert(extra.begin(), {"--vehicle", "uav1"});
+    return node_argv(name, kDomain, extra);
   }
-  void TearDown() override {
-    fs::remove_all(dir);
-    // Processes that were killed leave their shared-memory segments behind.
-    if (std::system("fastdds shm clean > /dev/null 2>&1") != 0) {
-      ADD_FAILURE() << "fastdds shm clean failed";
-    }
-  }
-  std::vector<std::string> node(const char* name, std::vector<std::string> extra) const {
-    std::vector<std::string> argv{binary(name), "--domain", std::to_string(kDomain), "--vehicle",
-                                  "uav1"};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    return argv;
-  }
-  std::string log(const char* name) const { return (dir / (std::string(name) + ".log")).string(); }
 };
 
 TEST_F(DdsPipeline, ThreeProcessesTrackTheShortFlight) {
@@ -88,24 +68,20 @@ TEST_F(DdsPipeline, ThreeProcessesTrackTheShortFlight) {
         changed.notify_all();
       });
 
-  test::ChildProcess matcher(
+  process::ChildProcess matcher(
       node("slam_matcher", {"--sensor", kScenario, "--slam-config",
                             std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml"}),
-      log("slam_matcher"));
+      log_path("slam_matcher"));
   ASSERT_TRUE(matcher.started());
   ASSERT_TRUE(pose_reader.wait_for_matched(1, 30s)) << matcher.log();
   ASSERT_TRUE(status_reader.wait_for_matched(1, 30s)) << matcher.log();
 
   // The sensors start once the matcher's readers have matched them: no scan is lost to discovery.
   const std::string start_at = shared_start_time();
-  test::ChildProcess imu(
-      node("imu_bridge", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
-                          "--start-at", start_at}),
-      log("imu_bridge"));
-  test::ChildProcess lidar(
-      node("lidar_driver", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
-                            "--start-at", start_at}),
-      log("lidar_driver"));
+  process::ChildProcess imu(node("imu_bridge", sensor_flags(kScenario, start_at)),
+                            log_path("imu_bridge"));
+  process::ChildProcess lidar(node("lidar_driver", sensor_flags(kScenario, start_at)),
+                              log_path("lidar_driver"));
   ASSERT_TRUE(lidar.wait(60s)) << lidar.log();
   EXPECT_EQ(lidar.exit_code(), 0) << lidar.log();
   ASSERT_TRUE(imu.wait(60s)) << imu.log();
@@ -133,21 +109,45 @@ TEST_F(DdsPipeline, ThreeProcessesTrackTheShortFlight) {
 }
 
 TEST_F(DdsPipeline, ABadProfileFileIsNamedAndRefused) {
-  const std::string bad = (dir / "bad.xml").string();
+  const std::string bad = path("bad.xml");
   std::ofstream(bad) << "<dds><profiles><participant profile_name=\"x\"><rtps><nope/></rtps>"
                         "</participant></profiles></dds>";
-  test::ChildProcess lidar(node("lidar_driver", {"--scenario", kScenario, "--qos", bad}),
-                           log("lidar_driver"));
+  process::ChildProcess lidar(node("lidar_driver", {"--scenario", kScenario, "--qos", bad}),
+                              log_path("lidar_driver"));
   ASSERT_TRUE(lidar.wait(30s));
   EXPECT_EQ(lidar.exit_code(), 2);
   EXPECT_THAT(lidar.log(), ::testing::HasSubstr(bad));
 
-  test::ChildProcess matcher(
+  process::ChildProcess matcher(
       node("slam_matcher", {"--sensor", kScenario, "--participant-profile", "no_such_profile"}),
-      log("slam_matcher"));
+      log_path("slam_matcher"));
   ASSERT_TRUE(matcher.wait(30s));
   EXPECT_EQ(matcher.exit_code(), 2);
   EXPECT_THAT(matcher.log(), ::testing::HasSubstr("no_such_profile"));
+}
+
+TEST_F(DdsPipeline, AScanWriterThatCannotServeTheMatcherStopsIt) {
+  dds::Participant vehicle(kIncompatibleDomain, dds::default_profiles_path(), "uavslam_loopback",
+                           "test");
+  // The matcher's scan reader asks for RELIABLE (--profile), the sensor writes BEST_EFFORT.
+  process::ChildProcess matcher(
+      node_argv("slam_matcher", kIncompatibleDomain,
+                {"--sensor", kScenario, "--profile", "scan=state_reader"}),
+      log_path("slam_matcher"));
+  dds::Writer<msg::LaserScanPubSubType> scans(vehicle, dds::topic_name("uav1", dds::kScanTopic),
+                                              "sensor_writer");
+  ASSERT_TRUE(scans.wait_for_incompatible_qos(1, 30s)) << matcher.log();
+  ASSERT_TRUE(matcher.wait(30s)) << matcher.log();
+  EXPECT_EQ(matcher.exit_code(), 1);
+  EXPECT_THAT(matcher.log(), ::testing::HasSubstr("incompatible QoS on topic 'uav1/scan'"));
+  EXPECT_THAT(matcher.log(), ::testing::HasSubstr("state_reader"));
+  EXPECT_THAT(matcher.log(), ::testing::HasSubstr("RELIABILITY"));
+
+  process::ChildProcess typo(node("slam_matcher", {"--sensor", kScenario, "--profile", "scna=x"}),
+                             log_path("typo"));
+  ASSERT_TRUE(typo.wait(30s));
+  EXPECT_EQ(typo.exit_code(), 2);
+  EXPECT_THAT(typo.log(), ::testing::HasSubstr("--profile 'scna=x'"));
 }
 
 }  // namespace

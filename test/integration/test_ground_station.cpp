@@ -1,9 +1,12 @@
 // The ground_station process as a late joiner: the test plays the vehicle side with real DDS
 // writers (map snapshot and matcher status first, then poses and scans), starts the real process
 // afterwards, stops it with SIGTERM and checks every file it wrote.
-#include <cstdlib>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -14,7 +17,8 @@
 #include <octomap/OcTree.h>
 #include <nlohmann/json.hpp>
 
-#include "ChildProcess.hpp"
+#include "ProcessTest.hpp"
+#include "common/ChildProcess.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/OccupancyMapConversions.hpp"
 #include "dds/Participant.hpp"
@@ -42,35 +46,13 @@ constexpr char kVehicle[] = "uav1";
 const eprosima::fastrtps::Duration_t kAckTimeout(30, 0);
 const dds::Source kSource{"map", kVehicle};
 
-class GroundStationTest : public ::testing::Test {
+class GroundStationTest : public test::ProcessTest {
  protected:
-  fs::path dir;
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "uavslam_gcs_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir = pattern;
-  }
-  void TearDown() override {
-    fs::remove_all(dir);
-    // Processes that were killed leave their shared-memory segments behind.
-    if (std::system("fastdds shm clean > /dev/null 2>&1") != 0) {
-      ADD_FAILURE() << "fastdds shm clean failed";
-    }
-  }
   std::vector<std::string> station(int domain, std::vector<std::string> extra = {}) const {
-    std::vector<std::string> argv{std::string(UAVSLAM_BIN_DIR) + "/ground_station",
-                                  "--domain",
-                                  std::to_string(domain),
-                                  "--vehicle",
-                                  kVehicle,
-                                  "--out",
-                                  (dir / "out").string(),
-                                  "--status-period",
-                                  "0.2"};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    return argv;
+    extra.insert(extra.begin(),
+                 {"--vehicle", kVehicle, "--out", path("out"), "--status-period", "0.2"});
+    return node_argv("ground_station", domain, extra);
   }
-  std::string log() const { return (dir / "ground_station.log").string(); }
   fs::path out(const char* name) const { return dir / "out" / name; }
   nlohmann::json summary() const {
     std::ifstream in(out("summary.json"));
@@ -146,7 +128,7 @@ TEST_F(GroundStationTest, LateJoinerGetsTheMapAndRecordsTheFlight) {
   ASSERT_TRUE(map_writer.write(snapshot));
   ASSERT_TRUE(status_writer.write(matcher_status()));
 
-  test::ChildProcess gcs(station(kLateJoinDomain), log());
+  process::ChildProcess gcs(station(kLateJoinDomain), log_path("ground_station"));
   ASSERT_TRUE(gcs.started());
   ASSERT_TRUE(map_writer.wait_for_matched(1, 30s)) << gcs.log();
   ASSERT_TRUE(status_writer.wait_for_matched(1, 30s)) << gcs.log();
@@ -214,7 +196,7 @@ TEST_F(GroundStationTest, ABadMapIsCountedAndNothingElseStillWritesTheOutputs) {
   bad.octomap_binary(std::vector<std::uint8_t>(64, 0x5a));
   ASSERT_TRUE(map_writer.write(bad));
 
-  test::ChildProcess gcs(station(kBadMapDomain), log());
+  process::ChildProcess gcs(station(kBadMapDomain), log_path("ground_station"));
   ASSERT_TRUE(gcs.started());
   ASSERT_TRUE(map_writer.wait_for_matched(1, 30s)) << gcs.log();
   ASSERT_EQ(map_writer.native().wait_for_acknowledgments(kAckTimeout), ReturnCode_t::RETCODE_OK);
@@ -237,7 +219,7 @@ TEST_F(GroundStationTest, AnIncompatiblePeerStopsItNamingTopicAndPolicy) {
   // A best-effort pose writer cannot serve the station's reliable pose reader.
   auto wrong =
       writer<msg::PoseWithCovarianceStampedPubSubType>(vehicle, dds::kPoseTopic, "sensor_writer");
-  test::ChildProcess gcs(station(kIncompatibleDomain), log());
+  process::ChildProcess gcs(station(kIncompatibleDomain), log_path("ground_station"));
   ASSERT_TRUE(gcs.started());
   ASSERT_TRUE(gcs.wait(30s)) << gcs.log();
   EXPECT_EQ(gcs.exit_code(), 1) << gcs.log();
@@ -247,9 +229,10 @@ TEST_F(GroundStationTest, AnIncompatiblePeerStopsItNamingTopicAndPolicy) {
 }
 
 TEST_F(GroundStationTest, AnUnknownConfigKeyIsAConfigError) {
-  const std::string config = (dir / "gcs.yaml").string();
+  const std::string config = path("gcs.yaml");
   std::ofstream(config) << "ground_station:\n  status_perod: 2\n";
-  test::ChildProcess gcs(station(kIncompatibleDomain, {"--config", config}), log());
+  process::ChildProcess gcs(station(kIncompatibleDomain, {"--config", config}),
+                            log_path("ground_station"));
   ASSERT_TRUE(gcs.wait(30s)) << gcs.log();
   EXPECT_EQ(gcs.exit_code(), 2);
   EXPECT_THAT(gcs.log(), HasSubstr("status_perod"));

@@ -3,10 +3,12 @@
 // must work on the freshest scan and count the rest as skipped, never queue them: so it reaches
 // the flight's last scan soon after the LiDAR stops (a queue would take minutes to drain) and its
 // memory stays bounded.
+#include <sys/types.h>
+
+#include <chrono>
 #include <condition_variable>
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <mutex>
 #include <string>
 
@@ -14,7 +16,8 @@
 #include <gtest/gtest.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 
-#include "ChildProcess.hpp"
+#include "ProcessTest.hpp"
+#include "common/ChildProcess.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Profiles.hpp"
 #include "dds/Reader.hpp"
@@ -23,23 +26,11 @@
 namespace uavslam {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
 constexpr int kDomain = 186;              // this test's own DDS domain
 constexpr std::uint64_t kLastScan = 800;  // short.yaml: 20 s at 40 Hz, sequences 0..800
 const std::string kScenario = std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/short.yaml";
-
-// The flight's start on the system clock, shared by both sensor processes (--start-at), far
-// enough ahead for them to discover the matcher first.
-std::string shared_start_time() {
-  const auto now = std::chrono::system_clock::now().time_since_epoch();
-  return std::to_string(std::chrono::duration<double>(now).count() + 3.0);
-}
-
-std::string binary(const char* name) {
-  return std::string(UAVSLAM_BIN_DIR) + "/" + name;
-}
 
 // Peak resident memory of a process in kB (VmHWM in /proc/<pid>/status), 0 if unreadable.
 long peak_rss_kb(pid_t pid) {
@@ -60,30 +51,10 @@ struct LatestStatus {
   std::size_t count = 0;
 };
 
-class MatcherLoad : public ::testing::Test {
- protected:
-  fs::path dir;
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "uavslam_load_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir = pattern;
-  }
-  void TearDown() override {
-    fs::remove_all(dir);
-    if (std::system("fastdds shm clean > /dev/null 2>&1") != 0) {
-      ADD_FAILURE() << "fastdds shm clean failed";
-    }
-  }
-  std::vector<std::string> node(const char* name, std::vector<std::string> extra) const {
-    std::vector<std::string> argv{binary(name), "--domain", std::to_string(kDomain)};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    return argv;
-  }
-  std::string log(const char* name) const { return (dir / (std::string(name) + ".log")).string(); }
-};
+using MatcherLoad = test::ProcessTest;
 
 TEST_F(MatcherLoad, FallingBehindItMatchesTheFreshestScanAndSkipsTheRest) {
-  const std::string slow_config = (dir / "slow.yaml").string();
+  const std::string slow_config = path("slow.yaml");
   std::ofstream(slow_config) << "icp: {iterations: 20}\nnearest_neighbour: {index: brute}\n";
 
   dds::Participant ground(kDomain, dds::default_profiles_path(), "uavslam_loopback", "test");
@@ -99,19 +70,15 @@ TEST_F(MatcherLoad, FallingBehindItMatchesTheFreshestScanAndSkipsTheRest) {
         status.changed.notify_all();
       });
 
-  test::ChildProcess matcher(
-      node("slam_matcher", {"--sensor", kScenario, "--slam-config", slow_config}),
-      log("slam_matcher"));
+  process::ChildProcess matcher(
+      node_argv("slam_matcher", kDomain, {"--sensor", kScenario, "--slam-config", slow_config}),
+      log_path("slam_matcher"));
   ASSERT_TRUE(status_reader.wait_for_matched(1, 30s)) << matcher.log();
   const std::string start_at = shared_start_time();
-  test::ChildProcess imu(
-      node("imu_bridge", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
-                          "--start-at", start_at}),
-      log("imu_bridge"));
-  test::ChildProcess lidar(
-      node("lidar_driver", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
-                            "--start-at", start_at}),
-      log("lidar_driver"));
+  process::ChildProcess imu(node_argv("imu_bridge", kDomain, sensor_flags(kScenario, start_at)),
+                            log_path("imu_bridge"));
+  process::ChildProcess lidar(node_argv("lidar_driver", kDomain, sensor_flags(kScenario, start_at)),
+                              log_path("lidar_driver"));
   ASSERT_TRUE(lidar.wait(60s)) << lidar.log();
   ASSERT_EQ(lidar.exit_code(), 0) << lidar.log();
 

@@ -2,7 +2,6 @@
 // the real `recorder` writes them to a sample log, stops on SIGTERM, and the log read back holds
 // every sample, byte for byte what the PubSubType serialises.
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -14,7 +13,8 @@
 #include <msg/ImuPubSubTypes.h>
 #include <msg/LaserScanPubSubTypes.h>
 
-#include "ChildProcess.hpp"
+#include "ProcessTest.hpp"
+#include "common/ChildProcess.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Profiles.hpp"
 #include "dds/Topics.hpp"
@@ -30,7 +30,6 @@ using testing::HasSubstr;
 
 constexpr int kDomain = 179;  // this test's own DDS domain
 constexpr char kVehicle[] = "rec";
-const std::string kRecorder = std::string(UAVSLAM_BIN_DIR) + "/recorder";
 
 // Polls until `done` holds or `timeout` passes (for conditions only a file or a log shows).
 template <typename Condition>
@@ -87,29 +86,14 @@ typename PubSubType::type decode(const io::LogSample& sample) {
   return message;
 }
 
-class Recorder : public testing::Test {
- protected:
-  fs::path dir;
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "uavslam_recorder_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir = pattern;
-  }
-  void TearDown() override {
-    fs::remove_all(dir);
-    if (std::system("fastdds shm clean > /dev/null 2>&1") != 0) {
-      ADD_FAILURE() << "fastdds shm clean failed";
-    }
-  }
-  std::string path(const char* name) const { return (dir / name).string(); }
-};
+using Recorder = test::ProcessTest;
 
 TEST_F(Recorder, RecordsEveryScanAndImuSampleAndStopsCleanly) {
   constexpr std::uint64_t kBatches = 10, kScansPerBatch = 10, kImuPerScan = 5;
   const std::string log_file = path("flight.uavlog");
-  test::ChildProcess recorder(
-      {kRecorder, "--domain", std::to_string(kDomain), "--vehicle", kVehicle, "--out", log_file},
-      path("recorder.log"));
+  process::ChildProcess recorder(
+      node_argv("recorder", kDomain, {"--vehicle", kVehicle, "--out", log_file}),
+      log_path("recorder"));
   ASSERT_TRUE(recorder.started());
 
   dds::Participant sensors(kDomain, dds::default_profiles_path(), "uavslam_loopback", "sensors");
@@ -171,7 +155,7 @@ TEST_F(Recorder, RecordsEveryScanAndImuSampleAndStopsCleanly) {
   EXPECT_TRUE(decode<msg::ImuPubSubType>(*imu_samples[321]) == imu_number(321));
 
   // --dump reads it back for people.
-  test::ChildProcess dump({kRecorder, "--dump", log_file}, path("dump.log"));
+  process::ChildProcess dump({binary("recorder"), "--dump", log_file}, path("dump.log"));
   ASSERT_TRUE(dump.wait(30s));
   EXPECT_EQ(dump.exit_code(), 0) << dump.log();
   EXPECT_THAT(dump.log(), HasSubstr("600 samples"));
@@ -181,8 +165,8 @@ TEST_F(Recorder, RecordsEveryScanAndImuSampleAndStopsCleanly) {
 TEST_F(Recorder, AnUnknownConfigKeyIsNamedAndRefused) {
   const std::string config = path("recorder.yaml");
   std::ofstream(config) << "recorder:\n  outt: x.uavlog\n";
-  test::ChildProcess recorder({kRecorder, "--domain", std::to_string(kDomain), "--config", config},
-                              path("recorder.log"));
+  process::ChildProcess recorder(node_argv("recorder", kDomain, {"--config", config}),
+                                 log_path("recorder"));
   ASSERT_TRUE(recorder.wait(30s));
   EXPECT_EQ(recorder.exit_code(), 2);
   EXPECT_THAT(recorder.log(), HasSubstr("outt"));
@@ -199,7 +183,7 @@ TEST_F(Recorder, DumpOfATruncatedLogPrintsWhatIsThereAndFails) {
     writer.close();
   }
   fs::resize_file(log_file, fs::file_size(log_file) - 10);
-  test::ChildProcess dump({kRecorder, "--dump", log_file}, path("dump.log"));
+  process::ChildProcess dump({binary("recorder"), "--dump", log_file}, path("dump.log"));
   ASSERT_TRUE(dump.wait(30s));
   EXPECT_EQ(dump.exit_code(), 1) << dump.log();
   EXPECT_THAT(dump.log(), HasSubstr("1 samples"));

@@ -4,7 +4,6 @@
 // every output is checked; and a ground station that joins after the flight still gets the map
 // from the real map server.
 #include <chrono>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -16,7 +15,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "ChildProcess.hpp"
+#include "ProcessTest.hpp"
+#include "common/ChildProcess.hpp"
 #include "eval/TrajectoryMetrics.hpp"
 #include "io/OctreeFile.hpp"
 #include "io/PlyFile.hpp"
@@ -34,47 +34,12 @@ constexpr int kLateJoinDomain = 189;  // the late-joining ground station
 const std::string kSource = UAVSLAM_SOURCE_DIR;
 const std::string kScenario = kSource + "/config/scenarios/short.yaml";
 
-std::string binary(const char* name) {
-  return std::string(UAVSLAM_BIN_DIR) + "/" + name;
-}
-
-std::string shared_start_time() {
-  const auto now = std::chrono::system_clock::now().time_since_epoch();
-  return std::to_string(std::chrono::duration<double>(now).count() + 3.0);
-}
-
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in);
 }
 
-// Waits until `text` appears in a process's log (it prints status lines as it goes).
-bool wait_for_log(const test::ChildProcess& process, const std::string& text,
-                  std::chrono::seconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (process.log().find(text) != std::string::npos) return true;
-    std::this_thread::sleep_for(50ms);
-  }
-  return false;
-}
-
-class System : public ::testing::Test {
- protected:
-  fs::path dir;
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "uavslam_system_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir = pattern;
-  }
-  void TearDown() override {
-    fs::remove_all(dir);
-    if (std::system("fastdds shm clean > /dev/null 2>&1") != 0) {
-      ADD_FAILURE() << "fastdds shm clean failed";
-    }
-  }
-  std::string path(const std::string& name) const { return (dir / name).string(); }
-};
+using System = test::ProcessTest;
 
 TEST_F(System, TheLauncherFliesTheSixProcessesAndEveryOutputIsWritten) {
   const std::string sensor =
@@ -91,7 +56,8 @@ TEST_F(System, TheLauncherFliesTheSixProcessesAndEveryOutputIsWritten) {
       << "  - {name: lidar_driver, until_exit: true, args: " << sensor
       << "--wait-for-subscribers, \"3\", --groundtruth, " << path("groundtruth.tum") << "]}\n";
 
-  test::ChildProcess launch({binary("uavslam"), "launch", path("flight.yaml")}, path("launch.log"));
+  process::ChildProcess launch({binary("uavslam"), "launch", path("flight.yaml")},
+                               path("launch.log"));
   ASSERT_TRUE(launch.wait(120s)) << launch.log();
   ASSERT_EQ(launch.exit_code(), 0) << launch.log();
   // Every process ended cleanly, in reverse order of starting, the ground station last.
@@ -129,29 +95,24 @@ TEST_F(System, TheLauncherFliesTheSixProcessesAndEveryOutputIsWritten) {
 }
 
 TEST_F(System, AGroundStationJoiningAfterTheFlightGetsTheMap) {
-  auto node = [&](const char* name, std::vector<std::string> extra) {
-    std::vector<std::string> argv{binary(name), "--domain", std::to_string(kLateJoinDomain)};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    return argv;
-  };
-  test::ChildProcess map_server(node("map_server", {"--out", path("map")}), path("map_server.log"));
-  test::ChildProcess matcher(node("slam_matcher", {"--sensor", kScenario}), path("matcher.log"));
+  process::ChildProcess map_server(node_argv("map_server", kLateJoinDomain, {"--out", path("map")}),
+                                   path("map_server.log"));
+  process::ChildProcess matcher(node_argv("slam_matcher", kLateJoinDomain, {"--sensor", kScenario}),
+                                path("matcher.log"));
   const std::string start_at = shared_start_time();
-  test::ChildProcess imu(
-      node("imu_bridge", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
-                          "--start-at", start_at}),
-      path("imu.log"));
-  test::ChildProcess lidar(
-      node("lidar_driver", {"--scenario", kScenario, "--rate", "4", "--wait-for-subscribers", "1",
-                            "--start-at", start_at}),
+  process::ChildProcess imu(
+      node_argv("imu_bridge", kLateJoinDomain, sensor_flags(kScenario, start_at)), path("imu.log"));
+  process::ChildProcess lidar(
+      node_argv("lidar_driver", kLateJoinDomain, sensor_flags(kScenario, start_at)),
       path("lidar.log"));
   ASSERT_TRUE(lidar.wait(60s)) << lidar.log();
   ASSERT_EQ(lidar.exit_code(), 0) << lidar.log();
   EXPECT_EQ(matcher.stop(10s), 0) << matcher.log();
 
   // The flight is over; now the ground station starts.
-  test::ChildProcess station(
-      node("ground_station", {"--out", path("gcs"), "--no-latency", "--status-period", "0.2"}),
+  process::ChildProcess station(
+      node_argv("ground_station", kLateJoinDomain,
+                {"--out", path("gcs"), "--no-latency", "--status-period", "0.2"}),
       path("gcs.log"));
   ASSERT_TRUE(wait_for_log(station, "(snapshot", 30s)) << station.log();
   EXPECT_EQ(station.stop(10s), 0) << station.log();

@@ -7,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "io/LaunchFile.hpp"
 #include "io/ScenarioFile.hpp"
 #include "io/SlamConfigFile.hpp"
 #include "io/YamlReader.hpp"
@@ -359,6 +360,52 @@ TEST(SlamConfigOverride, RejectsUnknownKeysAndBadValues) {
   EXPECT_THAT(config_error_of([&] { apply_slam_config_override(config, "icp.iterations"); }),
               HasSubstr("expected section.key=value"));
   EXPECT_EQ(config.icp.iterations, SlamConfig{}.icp.iterations);  // failures change nothing
+}
+
+TEST(LaunchFile, ShippedDemoListsTheSixProcesses) {
+  const LaunchFile launch =
+      load_launch_file(std::string(UAVSLAM_SOURCE_DIR) + "/config/launch/demo.yaml");
+  std::vector<std::string> names;
+  for (const LaunchedProcess& p : launch.processes) names.push_back(p.name);
+  EXPECT_THAT(names, ::testing::ElementsAre("ground_station", "map_server", "recorder",
+                                            "slam_matcher", "imu_bridge", "lidar_driver"));
+  EXPECT_TRUE(launch.processes.back().until_exit);
+  EXPECT_EQ(launch.processes.front().executable, "ground_station");
+  EXPECT_TRUE(launch.processes.front().node_options);
+}
+
+TEST_F(YamlFileTest, LaunchFileReadsEveryKey) {
+  const LaunchFile launch = load_launch_file(write("launch_full.yaml", R"(
+domain: 7
+vehicle: uav3
+log_dir: /tmp/logs
+stop_grace_s: 2.5
+start_delay_s: 0
+processes:
+  - {name: a, executable: /bin/true, args: [-x, "{start_at}"], node_options: false, until_exit: true}
+)"));
+  EXPECT_EQ(launch.domain, 7);
+  EXPECT_EQ(launch.vehicle, "uav3");
+  EXPECT_EQ(launch.log_dir, "/tmp/logs");
+  EXPECT_DOUBLE_EQ(launch.stop_grace_s, 2.5);
+  EXPECT_DOUBLE_EQ(launch.start_delay_s, 0.0);
+  ASSERT_EQ(launch.processes.size(), 1u);
+  EXPECT_EQ(launch.processes[0].executable, "/bin/true");
+  EXPECT_THAT(launch.processes[0].args, ::testing::ElementsAre("-x", "{start_at}"));
+  EXPECT_FALSE(launch.processes[0].node_options);
+  EXPECT_TRUE(launch.processes[0].until_exit);
+}
+
+TEST_F(YamlFileTest, LaunchFileErrorsNameTheKey) {
+  const std::string typo = write("launch_typo.yaml", "processes:\n  - {name: a, arg: [x]}\n");
+  EXPECT_THAT(config_error_of([&] { load_launch_file(typo); }), HasSubstr("processes[0].arg"));
+  const std::string twice = write("launch_twice.yaml", "processes: [{name: a}, {name: a}]\n");
+  EXPECT_THAT(config_error_of([&] { load_launch_file(twice); }),
+              HasSubstr("a second process named 'a'"));
+  const std::string none = write("launch_none.yaml", "processes: []\n");
+  EXPECT_THAT(config_error_of([&] { load_launch_file(none); }), HasSubstr("no process to launch"));
+  const std::string domain = write("launch_domain.yaml", "domain: 300\nprocesses: [{name: a}]\n");
+  EXPECT_THAT(config_error_of([&] { load_launch_file(domain); }), HasSubstr("300"));
 }
 
 }  // namespace
