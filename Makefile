@@ -49,9 +49,12 @@ bench: build
 	bash test/bench/matcher_table.sh --build-dir $(BUILD)
 	$(MAKE) bench-latency
 
-# Scan publish -> pose received through a real slam_matcher process, 40 Hz, 60 s of the demo flight.
+# Scan publish -> pose received through a real slam_matcher process, 40 Hz, 60 s of the demo flight,
+# with the normal scheduler and with SCHED_FIFO (as on the vehicle; needs root).
 bench-latency: build
 	$(BUILD)/test/bench/bench_latency --scenario config/scenarios/demo.yaml --duration 60
+	$(BUILD)/test/bench/bench_latency --scenario config/scenarios/demo.yaml --duration 60 \
+	  --realtime-priority 50
 
 # Accuracy and time against ICP iterations and FLANN checks (README "Choosing the iteration count").
 sweep: build

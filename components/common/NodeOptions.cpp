@@ -1,6 +1,10 @@
 #include "common/NodeOptions.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 
 #include "dds/Profiles.hpp"
 #include "dds/Topics.hpp"
@@ -32,6 +36,17 @@ void parse_profile_flags(NodeOptions& options) {
 
 }  // namespace
 
+void enter_realtime(int priority) {
+  if (priority <= 0) return;
+  sched_param param{};
+  param.sched_priority = priority;
+  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+    throw io::ConfigError("--realtime-priority " + std::to_string(priority) +
+                          ": cannot switch to SCHED_FIFO: " + std::strerror(errno) +
+                          " (needs root or CAP_SYS_NICE)");
+  }
+}
+
 std::string NodeOptions::profile(const std::string& base, const std::string& class_default) const {
   const auto chosen = profiles.find(base);
   return chosen == profiles.end() ? class_default : chosen->second;
@@ -51,6 +66,10 @@ void add_node_options(CLI::App& app, NodeOptions& options) {
   app.add_option("--participant-profile", options.participant_profile,
                  "participant profile in the XML file")
       ->capture_default_str();
+  app.add_option("--realtime-priority", options.realtime_priority,
+                 "run with the SCHED_FIFO real-time scheduler at this priority (1-99; 0: normal); "
+                 "needs root or CAP_SYS_NICE")
+      ->check(CLI::Range(0, 99));
   app.add_option("--profile", options.profile_flags,
                  "TOPIC=PROFILE: the writer/reader profile of the XML file for one topic, "
                  "instead of its class's (repeatable; e.g. scan=sensor_reader)");
@@ -67,10 +86,18 @@ bool unset(const CLI::App& app, const std::string& flag) {
 std::optional<io::YamlReader> apply_node_config(const CLI::App& app, NodeOptions& options,
                                                 const std::string& node) {
   parse_profile_flags(options);
-  if (options.config_file.empty()) return std::nullopt;
+  if (options.config_file.empty()) {
+    enter_realtime(options.realtime_priority);
+    return std::nullopt;
+  }
   const io::YamlReader file = io::YamlReader::from_file(options.config_file, "node config");
   if (const auto dds = file.find("dds")) {
-    dds->expect_keys_only({"domain", "vehicle", "qos_file", "participant_profile", "profiles"});
+    dds->expect_keys_only(
+        {"domain", "vehicle", "qos_file", "participant_profile", "profiles", "realtime_priority"});
+    if (unset(app, "--realtime-priority")) {
+      options.realtime_priority = dds->get_int_or("realtime_priority", options.realtime_priority,
+                                                  io::NumberRange::between(0, 99));
+    }
     if (const auto profiles = dds->find("profiles")) {
       profiles->expect_keys_only(kTopics);
       for (const std::string& topic : kTopics) {
@@ -90,6 +117,7 @@ std::optional<io::YamlReader> apply_node_config(const CLI::App& app, NodeOptions
           dds->get_string_or("participant_profile", options.participant_profile);
     }
   }
+  enter_realtime(options.realtime_priority);
   return file.find(node);
 }
 

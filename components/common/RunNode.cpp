@@ -9,6 +9,15 @@
 
 namespace uavslam::process {
 
+std::optional<int> parse_command_line(CLI::App& app, int argc, char** argv) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  return std::nullopt;
+}
+
 int run_node(const char* name, const std::function<int()>& body) {
   try {
     return body();

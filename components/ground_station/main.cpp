@@ -242,7 +242,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_flag("--quiet", options.quiet, "no status lines or final summary (errors still shown)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("ground_station", [&] {
     if (const auto section = uavslam::process::apply_node_config(app, node, "ground_station")) {

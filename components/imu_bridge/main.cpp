@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   uavslam::process::SimSourceOptions source;
   uavslam::process::add_node_options(app, node);
   uavslam::process::add_sim_source_options(app, source);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("imu_bridge", [&] {
     if (const auto section = uavslam::process::apply_node_config(app, node, "imu_bridge")) {

@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
   std::string groundtruth;
   app.add_option("--groundtruth", groundtruth,
                  "also write the simulator's true pose at each published scan to this TUM file");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("lidar_driver", [&] {
     if (const auto section = uavslam::process::apply_node_config(app, node, "lidar_driver")) {

@@ -274,7 +274,7 @@ int main(int argc, char** argv) {
   uavslam::MapServerOptions options;
   uavslam::process::add_node_options(app, node);
   uavslam::add_own_options(app, options);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("map_server", [&] {
     if (const auto section = uavslam::process::apply_node_config(app, node, "map_server")) {

@@ -262,7 +262,7 @@ int main(int argc, char** argv) {
   app.add_option("--dump", options.dump,
                  "print a sample log's channels, counts and time spans, then exit")
       ->check(CLI::ExistingFile);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("recorder", [&] {
     if (!options.dump.empty()) return uavslam::dump(options.dump);

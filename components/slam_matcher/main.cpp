@@ -213,7 +213,7 @@ int main(int argc, char** argv) {
                  "x,y,z of the body at the first scan (default: the scenario's first waypoint)")
       ->delimiter(',')
       ->expected(3);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("slam_matcher", [&] {
     if (const auto section = uavslam::process::apply_node_config(app, node, "slam_matcher")) {

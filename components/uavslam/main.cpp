@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 2;  // --help, or a bad flag or value (named by CLI11)
   } catch (const uavslam::io::ConfigError& e) {
     std::cerr << "uavslam: " << e.what() << "\n";
     return 2;

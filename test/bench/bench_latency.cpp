@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/ChildProcess.hpp"
+#include "common/NodeOptions.hpp"
 #include "common/RealTimePacer.hpp"
 #include "common/StopRequest.hpp"
 #include "dds/Conversions.hpp"
@@ -47,6 +48,7 @@ struct Options {
   std::string matcher = std::string(UAVSLAM_BIN_DIR) + "/slam_matcher";
   double duration = 0.0;
   int domain = 187;
+  int realtime_priority = 0;  // SCHED_FIFO for this program and the matcher; 0: normal
   std::string json;
 };
 
@@ -134,6 +136,7 @@ std::uint64_t fly(sim::FlightSimulator& simulator, const sim::Scenario& scenario
 }
 
 int run(const Options& o) {
+  process::enter_realtime(o.realtime_priority);
   const sim::Scenario scenario = io::load_scenario(o.scenario);
   sim::FlightSimulator simulator(scenario);
   dds::Participant participant(o.domain, dds::default_profiles_path(), "uavslam_loopback",
@@ -155,9 +158,10 @@ int run(const Options& o) {
       });
 
   const fs::path matcher_log = fs::temp_directory_path() / "bench_latency_matcher.log";
-  process::ChildProcess matcher({o.matcher, "--domain", std::to_string(o.domain), "--vehicle",
-                                 "uav1", "--sensor", o.scenario, "--slam-config", o.slam_config},
-                                matcher_log.string());
+  process::ChildProcess matcher(
+      {o.matcher, "--domain", std::to_string(o.domain), "--vehicle", "uav1", "--sensor", o.scenario,
+       "--slam-config", o.slam_config, "--realtime-priority", std::to_string(o.realtime_priority)},
+      matcher_log.string());
   if (!scans.wait_for_matched(1, 30s) || !imu.wait_for_matched(1, 30s) ||
       !poses.wait_for_matched(1, 30s)) {
     std::cerr << "bench_latency: the matcher did not match within 30 s:\n" << matcher.log();
@@ -173,7 +177,10 @@ int run(const Options& o) {
   const eval::SampleStats processing = eval::summarize(log.processing_ms());
   const eval::SampleStats in_matcher = eval::summarize(log.in_matcher_ms());
   std::cout << "bench_latency: " << scenario.name << ", " << published
-            << " scans at 40 Hz over loopback\n";
+            << " scans at 40 Hz over loopback, "
+            << (o.realtime_priority > 0 ? "SCHED_FIFO " + std::to_string(o.realtime_priority)
+                                        : std::string("normal scheduling"))
+            << "\n";
   print("scan written -> pose received (end to end)", ms);
   print("scan written -> pose written (matcher's status)", in_matcher);
   print("matching alone (matcher's status)", processing);
@@ -200,6 +207,9 @@ int main(int argc, char** argv) {
   app.add_option("--matcher", o.matcher, "the slam_matcher executable")->capture_default_str();
   app.add_option("--duration", o.duration, "seconds of the flight (0: all)")->capture_default_str();
   app.add_option("--domain", o.domain, "DDS domain id")->capture_default_str();
+  app.add_option("--realtime-priority", o.realtime_priority,
+                 "SCHED_FIFO priority for this program and the matcher (0: normal scheduling)")
+      ->capture_default_str();
   app.add_option("--json", o.json, "also write the figures to this JSON file");
   CLI11_PARSE(app, argc, argv);
   uavslam::process::install_stop_handler();
