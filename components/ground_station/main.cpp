@@ -64,8 +64,7 @@ ground_station::MatcherCounters counters_of(const msg::MatcherStatus& m) {
   c.scans_received = m.scans_received();
   c.scans_skipped = m.scans_skipped();
   c.scans_rejected = m.scans_rejected();
-  const std::uint64_t processed = m.header().seq() + 1;
-  c.scans_accepted = processed > m.scans_rejected() ? processed - m.scans_rejected() : 0;
+  c.scans_accepted = m.scans_accepted();
   c.last_outcome = m.outcome();
   return c;
 }

@@ -153,6 +153,7 @@ class MatcherNode {
     s.scans_received(queue_.scans_received());
     s.scans_skipped(queue_.scans_skipped());
     s.scans_rejected(rejected_);
+    s.scans_accepted(poses_);
     return s;
   }
 

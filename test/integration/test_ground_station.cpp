@@ -90,6 +90,7 @@ msg::MatcherStatus matcher_status() {
   status.scans_received(50);
   status.scans_skipped(2);
   status.scans_rejected(3);
+  status.scans_accepted(39);
   return status;
 }
 

@@ -142,6 +142,7 @@ TEST(WireTypes, MatcherStatusRoundTrips) {
   status.scans_received(78);
   status.scans_skipped(1);
   status.scans_rejected(3);
+  status.scans_accepted(74);
   EXPECT_EQ(round_trip<MatcherStatusPubSubType>(status), status);
 }
 
