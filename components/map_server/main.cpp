@@ -15,7 +15,7 @@
 #include <msg/PosePubSubTypes.h>
 #include <CLI/CLI.hpp>
 
-#include "KeyframeQueue.hpp"
+#include "common/HandoffQueue.hpp"
 #include "common/IncompatibleQos.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/RunNode.hpp"
@@ -103,7 +103,7 @@ class MapServerNode {
     auto last_publish = Clock::now() - period;
     while (!process::stop_requested()) {
       check_qos();
-      ingest(queue_.take_all(Clock::now() + std::chrono::milliseconds(100)));
+      ingest_queued(std::chrono::milliseconds(100));
       if (map_changed() && Clock::now() - last_publish >= period) {
         last_publish = Clock::now();
         publish_snapshot();
@@ -123,8 +123,10 @@ class MapServerNode {
     qos_.output(map_);
   }
 
-  void ingest(const std::vector<msg::MapPoints>& keyframes) {
-    for (const msg::MapPoints& m : keyframes) ingest(m);
+  // Every keyframe the DDS thread queued, waiting up to `timeout` for the first.
+  void ingest_queued(std::chrono::milliseconds timeout) {
+    queue_.take_all(batch_, timeout);
+    for (const msg::MapPoints& m : batch_) ingest(m);
   }
 
   void ingest(const msg::MapPoints& m) {
@@ -166,7 +168,7 @@ class MapServerNode {
 
   // On stop: what is still queued goes into the map, the map out to its subscribers.
   void flush() {
-    ingest(queue_.take_all(Clock::now()));
+    ingest_queued(std::chrono::milliseconds(0));
     if (map_changed()) publish_snapshot();
     // The writer is asynchronous: give the last snapshot a moment to reach its readers.
     if (map_.matched() > 0) map_.wait_for_acknowledgments(std::chrono::seconds(2));
@@ -208,7 +210,9 @@ class MapServerNode {
   std::size_t last_snapshot_bytes_ = 0;
   std::mutex pose_mutex_;
   Pose last_pose_;
-  map_server::KeyframeQueue queue_;
+  // Unbounded: no keyframe may be lost (each carries points no later one repeats).
+  process::HandoffQueue<msg::MapPoints> queue_;
+  std::vector<msg::MapPoints> batch_;
   process::QosWatch qos_{"map_server"};
   dds::Participant participant_;
   dds::Writer<msg::OccupancyMapPubSubType> map_;

@@ -18,7 +18,7 @@
 #include <msg/LaserScanPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
-#include "SampleQueue.hpp"
+#include "common/HandoffQueue.hpp"
 #include "common/IncompatibleQos.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/RunNode.hpp"
@@ -134,8 +134,8 @@ class RecorderNode {
                          const typename PubSubType::type& sample,
                          const eprosima::fastdds::dds::SampleInfo& info) {
       ++counts.received;
-      recorder::ReceivedSample received{channel, now_ns(), info.source_timestamp.to_ns(), {}};
-      if (!to_cdr(*type, sample, received.cdr) || !queue_.push(std::move(received))) {
+      io::LogSample received{channel, now_ns(), info.source_timestamp.to_ns(), {}};
+      if (!to_cdr(*type, sample, received.payload) || !queue_.push(std::move(received))) {
         ++counts.dropped;
       }
     };
@@ -145,11 +145,12 @@ class RecorderNode {
   // The writer thread: writes what waits, and flushes whenever it has caught up so the file on
   // disk is complete up to the last sample received.
   void write_loop() {
-    std::vector<recorder::ReceivedSample> batch;
+    std::vector<io::LogSample> batch;
     try {
-      while (queue_.pop_all(batch, std::chrono::milliseconds(100))) {
-        for (const recorder::ReceivedSample& s : batch) {
-          log_.write(s.channel, s.receive_time_ns, s.source_time_ns, s.cdr.data(), s.cdr.size());
+      while (queue_.take_all(batch, std::chrono::milliseconds(100))) {
+        for (const io::LogSample& s : batch) {
+          log_.write(s.channel, s.receive_time_ns, s.source_time_ns, s.payload.data(),
+                     s.payload.size());
           ++counts_[s.channel].written;
         }
         if (!batch.empty()) log_.flush();
@@ -192,7 +193,7 @@ class RecorderNode {
 
   dds::Participant participant_;
   io::SampleLogWriter log_;
-  recorder::SampleQueue queue_;
+  process::HandoffQueue<io::LogSample> queue_;
   std::deque<TopicCounts> counts_;  // by channel id; a deque never moves its elements
   std::unique_ptr<dds::Reader<msg::LaserScanPubSubType>> scans_;
   std::unique_ptr<dds::Reader<msg::ImuPubSubType>> imu_;
