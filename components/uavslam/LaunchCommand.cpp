@@ -32,6 +32,7 @@ struct LaunchOptions {
 struct Running {
   io::LaunchedProcess spec;
   std::unique_ptr<process::ChildProcess> child;
+  bool ended = false;  // announced as ended
 };
 
 // Beside this executable first (build/bin holds every process), then on PATH.
@@ -85,12 +86,14 @@ std::string last_line(const std::string& text) {
 }
 
 // Why the run ends: the until_exit process ended by itself, a process failed, or a stop request.
+// Other processes that end cleanly (a sensor at the end of its data) leave the rest running.
 enum class RunEnd { Finished, Failed, Stopped };
 
 RunEnd supervise(std::vector<Running>& processes) {
   while (!process::stop_requested()) {
     for (Running& r : processes) {
-      if (r.child->running()) continue;
+      if (r.ended || r.child->running()) continue;
+      r.ended = true;
       const int code = r.child->exit_code();
       std::cerr << "launch: " << r.spec.name << " ended (exit " << code << ")\n";
       if (code != 0) return RunEnd::Failed;

@@ -152,4 +152,44 @@ TEST_F(UavslamCli, EvalNamesTheLineOfAMalformedTrajectory) {
   EXPECT_THAT(r.output, HasSubstr(bad + ":2:"));
 }
 
+// The launcher on plain programs (no DDS): the run ends with the until_exit process; a process
+// that ends cleanly before it leaves the others running; a failing one stops the run.
+TEST_F(UavslamCli, LaunchRunsUntilTheUntilExitProcessEnds) {
+  const std::string file = write("launch.yaml", "log_dir: " + (dir / "logs").string() + R"(
+processes:
+  - {name: quick, executable: /bin/true, node_options: false}
+  - {name: sleeper, executable: /bin/sleep, args: ["0.5"], node_options: false, until_exit: true}
+)");
+  const CommandResult result = run("launch " + file);
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  const std::string ended = "launch: quick ended (exit 0)";
+  const std::size_t first = result.output.find(ended);
+  ASSERT_NE(first, std::string::npos) << result.output;
+  EXPECT_EQ(result.output.find(ended, first + 1), std::string::npos) << "announced once";
+  EXPECT_THAT(result.output, HasSubstr("launch: sleeper ended (exit 0)"));
+  EXPECT_TRUE(fs::exists(dir / "logs" / "sleeper.log"));
+}
+
+TEST_F(UavslamCli, LaunchStopsEverythingWhenAProcessFails) {
+  const std::string file = write("launch.yaml", "log_dir: " + (dir / "logs").string() + R"(
+stop_grace_s: 5
+processes:
+  - {name: sleeper, executable: /bin/sleep, args: ["60"], node_options: false, until_exit: true}
+  - {name: broken, executable: /bin/false, node_options: false}
+)");
+  const CommandResult result = run("launch " + file);
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_THAT(result.output, HasSubstr("launch: broken ended (exit 1)"));
+  // SIGINT ended the sleeper: 128 + 2.
+  EXPECT_THAT(result.output, HasSubstr("launch: sleeper exit 130"));
+}
+
+TEST_F(UavslamCli, LaunchNamesAMissingExecutable) {
+  const std::string file =
+      write("launch.yaml", "log_dir: " + (dir / "logs").string() + "\nprocesses: [{name: nope}]\n");
+  const CommandResult result = run("launch " + file);
+  EXPECT_NE(result.exit_code, 0);
+  EXPECT_THAT(result.output, HasSubstr("no executable 'nope'"));
+}
+
 }  // namespace

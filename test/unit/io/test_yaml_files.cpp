@@ -374,6 +374,13 @@ TEST(LaunchFile, ShippedDemoListsTheSixProcesses) {
   EXPECT_TRUE(launch.processes.front().node_options);
 }
 
+TEST(LaunchFile, EveryShippedLaunchFileLoads) {
+  const std::string dir = std::string(UAVSLAM_SOURCE_DIR) + "/config/launch/";
+  for (const char* name : {"demo.yaml", "uav.yaml", "ground.yaml"}) {
+    EXPECT_FALSE(load_launch_file(dir + name).processes.empty()) << name;
+  }
+}
+
 TEST_F(YamlFileTest, LaunchFileReadsEveryKey) {
   const LaunchFile launch = load_launch_file(write("launch_full.yaml", R"(
 domain: 7
