@@ -1,8 +1,13 @@
-// uavslam eval: trajectory errors of any estimate against a ground truth, both TUM files.
+// uavslam eval: trajectory errors of any estimate against a ground truth, both TUM files, or of
+// a planar estimate against the Freiburg benchmark's relations (Kümmerle et al. 2009).
+#include <cmath>
+#include <iomanip>
 #include <iostream>
 
 #include "Commands.hpp"
 #include "RunSummary.hpp"
+#include "eval/RelationMetric.hpp"
+#include "io/RelationsFile.hpp"
 #include "io/TumFile.hpp"
 
 namespace uavslam::cli {
@@ -11,13 +16,56 @@ namespace {
 struct EvalOptions {
   std::string estimate;
   std::string ground_truth;
+  std::string relations;
   std::string align = "none";
   double max_dt = 0.01;
   double delta = 1.0;
   bool json = false;
 };
 
+constexpr double kDegreesPerRadian = 57.29577951308232;  // 180 / pi
+
+nlohmann::json statistics_json(const eval::ErrorStatistics& s, double scale) {
+  return {{"count", s.count},
+          {"mean", s.mean * scale},
+          {"std", s.std_dev * scale},
+          {"max", s.max * scale}};
+}
+
+nlohmann::json subset_json(const eval::RelationSubsetErrors& e) {
+  return {{"relations", e.relations},
+          {"unmatched", e.unmatched},
+          {"translation_m", statistics_json(e.translation, 1.0)},
+          {"rotation_deg", statistics_json(e.rotation, kDegreesPerRadian)}};
+}
+
+void print_subset(std::ostream& out, const std::string& name, const eval::RelationSubsetErrors& e) {
+  out << std::fixed << std::setprecision(4) << "  " << name << e.translation.mean << " ± "
+      << e.translation.std_dev << " m (max " << e.translation.max << "), " << std::setprecision(3)
+      << e.rotation.mean * kDegreesPerRadian << " ± " << e.rotation.std_dev * kDegreesPerRadian
+      << " deg (max " << e.rotation.max * kDegreesPerRadian << ") over " << e.translation.count
+      << " of " << e.relations << " relations, " << e.unmatched << " unmatched\n";
+}
+
+int run_relations_eval(const EvalOptions& o) {
+  const eval::RelationErrors errors = eval::compare_to_relations(
+      io::read_planar_estimate(o.estimate), io::read_relations(o.relations));
+  if (o.json) {
+    const nlohmann::json j = {{"all", subset_json(errors.all)},
+                              {"short_span_limit_s", errors.short_span_limit},
+                              {"short_span", subset_json(errors.short_span)}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << "uavslam eval: " << o.estimate << " against the relations " << o.relations
+              << " (Kuemmerle et al. 2009)\n";
+    print_subset(std::cout, "all relations     ", errors.all);
+    print_subset(std::cout, "under 5 s         ", errors.short_span);
+  }
+  return 0;
+}
+
 int run_eval(const EvalOptions& o) {
+  if (!o.relations.empty()) return run_relations_eval(o);
   eval::MetricOptions options;
   options.alignment = o.align == "se3" ? eval::Alignment::SE3 : eval::Alignment::None;
   options.max_time_difference = o.max_dt;
@@ -41,13 +89,26 @@ void add_eval_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "eval",
       "Absolute trajectory error (ATE, horizontal and vertical) and relative pose error "
-      "(RPE) of an estimate against a ground truth, both TUM files");
-  cmd->add_option("--estimate", options->estimate, "estimated trajectory (TUM)")
+      "(RPE) of an estimate against a ground truth, both TUM files; or the Freiburg benchmark "
+      "metric (Kuemmerle et al. 2009) of a planar estimate against relations");
+  cmd->add_option("--estimate", options->estimate,
+                  "estimated trajectory (TUM; with --relations 'timestamp x y theta' lines)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--groundtruth", options->ground_truth, "ground-truth trajectory (TUM)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  // Exactly one reference: a ground-truth trajectory or the benchmark's relations.
+  CLI::Option_group* reference =
+      cmd->add_option_group("reference", "what the estimate is scored against");
+  CLI::Option* ground_truth =
+      reference->add_option("--groundtruth", options->ground_truth, "ground-truth trajectory (TUM)")
+          ->check(CLI::ExistingFile);
+  CLI::Option* relations =
+      reference
+          ->add_option("--relations", options->relations,
+                       "true relative motions 't1 t2 x y z roll pitch yaw' (Freiburg benchmark)")
+          ->check(CLI::ExistingFile)
+          ->excludes(ground_truth);
+  ground_truth->excludes(relations);
+  reference->require_option(1);
   cmd->add_option("--align", options->align, "align the estimate first: none or se3 (Umeyama)")
       ->check(CLI::IsMember({"none", "se3"}))
       ->capture_default_str();

@@ -10,49 +10,19 @@
 #include <memory>
 #include <string_view>
 
+#include "io/TextFields.hpp"
+
 namespace uavslam::io {
 namespace {
 
 constexpr const char* kFieldNames[8] = {"t", "x", "y", "z", "qx", "qy", "qz", "qw"};
-constexpr std::size_t kShownTextLength = 80;  // longer offending lines are cut in messages
 
 struct FileCloser {
   void operator()(std::FILE* file) const { std::fclose(file); }
 };
 
-std::string quoted(std::string_view text) {
-  if (text.size() > kShownTextLength)
-    return "'" + std::string(text.substr(0, kShownTextLength)) + "...'";
-  return "'" + std::string(text) + "'";
-}
-
-// The text before a '#', as evo (numpy.loadtxt comments="#") reads it.
-std::string_view without_comment(std::string_view line) {
-  return line.substr(0, line.find('#'));
-}
-
-std::vector<std::string_view> split_on_whitespace(std::string_view text) {
-  constexpr std::string_view kWhitespace = " \t\r\v\f";
-  std::vector<std::string_view> fields;
-  std::size_t begin = text.find_first_not_of(kWhitespace);
-  while (begin != std::string_view::npos) {
-    const std::size_t end = std::min(text.find_first_of(kWhitespace, begin), text.size());
-    fields.push_back(text.substr(begin, end - begin));
-    begin = text.find_first_not_of(kWhitespace, end);
-  }
-  return fields;
-}
-
-// from_chars is locale independent, so "1.5" parses the same whatever the user's locale.
-bool parse_finite(std::string_view text, double& value) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const char* end = text.data() + text.size();
-  const auto [stop, error] = std::from_chars(text.data(), end, value);
-  return error == std::errc() && stop == end && std::isfinite(value);
-}
-
 Pose parse_pose_line(const std::string& path, std::size_t line_number, std::string_view line) {
-  const std::vector<std::string_view> fields = split_on_whitespace(without_comment(line));
+  const std::vector<std::string_view> fields = split_fields(without_comment(line));
   if (fields.size() != 8) {
     throw line_error(path, line_number,
                      "expected 8 numbers 't x y z qx qy qz qw', got " +
@@ -60,7 +30,7 @@ Pose parse_pose_line(const std::string& path, std::size_t line_number, std::stri
   }
   double values[8];
   for (std::size_t i = 0; i < 8; ++i) {
-    if (!parse_finite(fields[i], values[i])) {
+    if (!parse_number(fields[i], values[i])) {
       throw line_error(path, line_number,
                        quoted(fields[i]) + " is not a finite number (field " + kFieldNames[i] +
                            ") in " + quoted(line));
@@ -79,7 +49,7 @@ Pose parse_pose_line(const std::string& path, std::size_t line_number, std::stri
 }
 
 bool is_blank(std::string_view text) {
-  return split_on_whitespace(text).empty();
+  return split_fields(text).empty();
 }
 
 }  // namespace

@@ -193,3 +193,34 @@ TEST_F(UavslamCli, LaunchNamesAMissingExecutable) {
 }
 
 }  // namespace
+
+// The Freiburg benchmark metric from the command line: one exact short relation and one long one
+// 1 m off give 0.5 ± 0.5 m over all relations and 0 under 5 s.
+TEST_F(UavslamCli, EvalScoresAPlanarEstimateAgainstRelations) {
+  const std::string relations =
+      write("r.relations", "100.5 101.5 1 0 0 0 0 0\n100.5 200.25 3 0 0 0 0 0.1\n");
+  const std::string estimate = write("est.txt", "200.25 4 0 0\n100.5 0 0 0\n101.5 1 0 0\n");
+  const CommandResult r = run("eval --relations " + relations + " --estimate " + estimate);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("0.5000 ± 0.5000 m"));
+  EXPECT_THAT(r.output, HasSubstr("over 2 of 2 relations, 0 unmatched"));
+  EXPECT_THAT(r.output, HasSubstr("0.0000 ± 0.0000 m"));
+
+  const CommandResult j = run("eval --json --relations " + relations + " --estimate " + estimate);
+  ASSERT_EQ(j.exit_code, 0) << j.output;
+  const nlohmann::json figures = nlohmann::json::parse(j.output);
+  EXPECT_NEAR(figures["all"]["translation_m"]["mean"].get<double>(), 0.5, 1e-9);
+  EXPECT_NEAR(figures["all"]["rotation_deg"]["max"].get<double>(), 5.729577951, 1e-6);
+  EXPECT_EQ(figures["short_span"]["relations"].get<int>(), 1);
+
+  const std::string bad = write("bad.txt", "100.5 0 0 0\n101.5 1 0\n");
+  const CommandResult b = run("eval --relations " + relations + " --estimate " + bad);
+  EXPECT_EQ(b.exit_code, 2) << b.output;
+  EXPECT_THAT(b.output, HasSubstr(bad + ":2:"));
+
+  const CommandResult both = run("eval --relations " + relations + " --groundtruth " + estimate +
+                                 " --estimate " + estimate);
+  EXPECT_NE(both.exit_code, 0) << both.output;
+  const CommandResult neither = run("eval --estimate " + estimate);
+  EXPECT_NE(neither.exit_code, 0) << neither.output;
+}

@@ -1,0 +1,121 @@
+#include "eval/RelationMetric.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <optional>
+#include <utility>
+
+namespace uavslam::eval {
+namespace {
+
+struct PlanarMotion {
+  double x = 0.0, y = 0.0, theta = 0.0;
+};
+
+double normalised_angle(double angle) {
+  return std::atan2(std::sin(angle), std::cos(angle));
+}
+
+// a⁻¹ ⊕ b: the motion from a to b in the frame of a.
+PlanarMotion motion_between(const PlanarMotion& a, const PlanarMotion& b) {
+  const double dx = b.x - a.x;
+  const double dy = b.y - a.y;
+  const double c = std::cos(a.theta);
+  const double s = std::sin(a.theta);
+  return {c * dx + s * dy, -s * dx + c * dy, normalised_angle(b.theta - a.theta)};
+}
+
+// Estimated poses sorted by stamp, so that a stamp is found by value whatever the file order.
+class PoseLookup {
+ public:
+  PoseLookup(std::vector<PlanarStamped> poses, double tolerance)
+      : poses_(std::move(poses)), tolerance_(tolerance) {
+    std::stable_sort(poses_.begin(), poses_.end(),
+                     [](const PlanarStamped& a, const PlanarStamped& b) { return a.t < b.t; });
+  }
+
+  // The pose whose stamp is nearest to t, if it is within the tolerance.
+  std::optional<PlanarMotion> at(double t) const {
+    const auto after =
+        std::lower_bound(poses_.begin(), poses_.end(), t,
+                         [](const PlanarStamped& pose, double stamp) { return pose.t < stamp; });
+    const PlanarStamped* best = nullptr;
+    if (after != poses_.end()) best = &*after;
+    if (after != poses_.begin()) {
+      const PlanarStamped& before = *std::prev(after);
+      if (!best || t - before.t < best->t - t) best = &before;
+    }
+    if (!best || std::abs(best->t - t) > tolerance_) return std::nullopt;
+    return PlanarMotion{best->x, best->y, best->theta};
+  }
+
+ private:
+  std::vector<PlanarStamped> poses_;
+  double tolerance_;
+};
+
+ErrorStatistics statistics_of(const std::vector<double>& values) {
+  ErrorStatistics s;
+  s.count = values.size();
+  if (values.empty()) return s;
+  double sum = 0.0;
+  for (double v : values) sum += v;
+  s.mean = sum / static_cast<double>(values.size());
+  double squares = 0.0;
+  for (double v : values) squares += (v - s.mean) * (v - s.mean);
+  s.std_dev = std::sqrt(squares / static_cast<double>(values.size()));
+  s.max = *std::max_element(values.begin(), values.end());
+  return s;
+}
+
+// Collects the errors of one subset of relations.
+struct SubsetAccumulator {
+  std::size_t relations = 0;
+  std::size_t unmatched = 0;
+  std::vector<double> translation;
+  std::vector<double> rotation;
+
+  RelationSubsetErrors result() const {
+    return {relations, unmatched, statistics_of(translation), statistics_of(rotation)};
+  }
+};
+
+}  // namespace
+
+RelationErrors compare_to_relations(const std::vector<PlanarStamped>& estimate,
+                                    const std::vector<Relation>& relations,
+                                    double stamp_tolerance) {
+  const PoseLookup lookup(estimate, stamp_tolerance);
+  RelationErrors errors;
+  SubsetAccumulator all;
+  SubsetAccumulator short_span;
+  for (const Relation& relation : relations) {
+    const bool is_short = std::abs(relation.t2 - relation.t1) < errors.short_span_limit;
+    ++all.relations;
+    if (is_short) ++short_span.relations;
+    const std::optional<PlanarMotion> from = lookup.at(relation.t1);
+    const std::optional<PlanarMotion> to = lookup.at(relation.t2);
+    if (!from || !to) {
+      ++all.unmatched;
+      if (is_short) ++short_span.unmatched;
+      continue;
+    }
+    const PlanarMotion estimated = motion_between(*from, *to);
+    const PlanarMotion error =
+        motion_between({relation.x, relation.y, relation.yaw}, estimated);  // δ⁻¹ ⊕ δ̂
+    const double translation = std::hypot(error.x, error.y);
+    const double rotation = std::abs(error.theta);
+    all.translation.push_back(translation);
+    all.rotation.push_back(rotation);
+    if (is_short) {
+      short_span.translation.push_back(translation);
+      short_span.rotation.push_back(rotation);
+    }
+  }
+  errors.all = all.result();
+  errors.short_span = short_span.result();
+  return errors;
+}
+
+}  // namespace uavslam::eval

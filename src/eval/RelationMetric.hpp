@@ -1,0 +1,44 @@
+// The Freiburg SLAM benchmark metric (Kümmerle et al., "On measuring the accuracy of SLAM
+// algorithms", Autonomous Robots 27(4), 2009): an estimate is scored by how well it reproduces
+// the true relative motions ("relations") between pairs of scans, not by absolute poses, so no
+// alignment to a global frame is needed.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "eval/Relation.hpp"
+
+namespace uavslam::eval {
+
+// Mean, population standard deviation and largest value of the errors of one set of relations.
+struct ErrorStatistics {
+  std::size_t count = 0;
+  double mean = 0.0;
+  double std_dev = 0.0;
+  double max = 0.0;
+};
+
+struct RelationSubsetErrors {
+  std::size_t relations = 0;    // relations in the subset, matched or not
+  std::size_t unmatched = 0;    // those whose t1 or t2 has no estimated pose
+  ErrorStatistics translation;  // m
+  ErrorStatistics rotation;     // rad
+};
+
+struct RelationErrors {
+  RelationSubsetErrors all;
+  RelationSubsetErrors short_span;  // |t2 - t1| < short_span_limit: local accuracy
+  double short_span_limit = 5.0;    // s, the split the benchmark's published figures use
+};
+
+// For each relation δ (true) the estimated motion is δ̂ = x̂(t1)⁻¹ ⊕ x̂(t2) and the error is
+// e = δ⁻¹ ⊕ δ̂ (Kümmerle 2009, Eq. 1: δ̂ ⊖ δ); the translational error is |trans(e)| and the
+// rotational error |rot(e)|, the angle normalised to [-π, π]. Estimated poses are looked up by
+// timestamp value (the logs' stamps are not monotonic) within `stamp_tolerance` seconds;
+// relations whose t1 or t2 has no estimate are counted as unmatched and left out of the figures.
+RelationErrors compare_to_relations(const std::vector<PlanarStamped>& estimate,
+                                    const std::vector<Relation>& relations,
+                                    double stamp_tolerance = 1e-6);
+
+}  // namespace uavslam::eval
