@@ -1,0 +1,288 @@
+// uavslam run: the SLAM pipeline over a recorded CARMEN log (the Freiburg 2D benchmark logs), in
+// the seed's mode: translation from the translation-only ICP, orientation from the robot's
+// odometry heading (these robots had no IMU), written as OUT/estimate.txt for `uavslam eval
+// --relations`, OUT/estimate.tum, OUT/map.ply and OUT/summary.json.
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "Commands.hpp"
+#include "common/StopRequest.hpp"
+#include "core/SlamPipeline.hpp"
+#include "eval/Percentile.hpp"
+#include "io/CarmenLog.hpp"
+#include "io/FileError.hpp"
+#include "io/PlyFile.hpp"
+#include "io/TumFile.hpp"
+
+namespace uavslam::cli {
+namespace {
+
+struct RunOptions {
+  std::string carmen;
+  std::string out;
+  std::string config;
+  std::vector<std::string> overrides;
+  bool quiet = false;
+};
+
+// The pipeline's ImuBuffer needs strictly increasing stamps, and intel.clf's ipc_timestamps run
+// backwards; the pipeline runs on this clock, derived from file order, which follows the log's
+// stamps wherever they increase and creeps forward by kClockStep wherever they do not.
+class MonotonicClock {
+ public:
+  double next(double stamp) {
+    last_ = std::isfinite(last_) ? std::max(last_ + kClockStep, stamp) : stamp;
+    return last_;
+  }
+
+ private:
+  static constexpr double kClockStep = 1e-4;  // s; far below the 0.1 s scan period
+  double last_ = -std::numeric_limits<double>::infinity();
+};
+
+struct AcceptedScan {
+  double ipc_timestamp = 0.0;  // the scan's own stamp, which the relations refer to
+  Pose pose;                   // stamped with the ipc_timestamp too
+  double theta = 0.0;          // the heading used (odometry)
+};
+
+struct LogRun {
+  std::vector<AcceptedScan> accepted;
+  std::vector<double> scan_seconds;
+  std::array<std::size_t, kScanOutcomeCount> outcomes{};
+  std::size_t scans_in = 0;
+  std::size_t keyframes = 0;
+  std::size_t malformed_lines = 0;
+  std::vector<std::string> problems;
+  Points map;
+  double first_stamp = std::numeric_limits<double>::infinity();
+  double last_stamp = -std::numeric_limits<double>::infinity();
+  double read_seconds = 0.0;
+  double wall_seconds = 0.0;  // pipeline only
+  bool stopped_early = false;
+
+  double log_seconds() const { return scans_in > 0 ? last_stamp - first_stamp : 0.0; }
+  std::size_t accepted_count() const {
+    return outcomes[std::size_t(ScanOutcome::Accepted)] +
+           outcomes[std::size_t(ScanOutcome::MapInitialised)];
+  }
+};
+
+Eigen::Quaterniond yaw_rotation(double theta) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(theta, Vec3::UnitZ()));
+}
+
+// One geometry per distinct beam layout (a log normally has one).
+class GeometryCache {
+ public:
+  std::shared_ptr<const ScanGeometry> for_scan(const io::CarmenScan& scan) {
+    if (!geometry_ || scan.ranges.size() != beams_ || scan.start_angle != start_ ||
+        scan.angle_increment != increment_ || scan.max_range != max_range_) {
+      geometry_ = std::make_shared<const ScanGeometry>(io::to_scan_geometry(scan));
+      beams_ = scan.ranges.size();
+      start_ = scan.start_angle;
+      increment_ = scan.angle_increment;
+      max_range_ = scan.max_range;
+    }
+    return geometry_;
+  }
+
+ private:
+  std::shared_ptr<const ScanGeometry> geometry_;
+  std::size_t beams_ = 0;
+  double start_ = 0.0;
+  double increment_ = 0.0;
+  double max_range_ = 0.0;
+};
+
+std::vector<const io::CarmenScan*> scans_in_file_order(const io::CarmenLog& log) {
+  std::vector<const io::CarmenScan*> scans;
+  for (const io::CarmenMessage& message : log.messages) {
+    if (const auto* scan = std::get_if<io::CarmenScan>(&message)) scans.push_back(scan);
+  }
+  return scans;
+}
+
+// The laser's own odometry pose (FLASER: x y theta) is the scan's frame: its points are measured
+// there, the first scan seeds the map there and its theta is the orientation of the scan.
+void process_log(const io::CarmenLog& log, const SlamConfig& config, LogRun& run,
+                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  using Clock = std::chrono::steady_clock;
+  const std::vector<const io::CarmenScan*> scans = scans_in_file_order(log);
+  if (scans.empty()) return;
+  const io::CarmenPose2& start = scans.front()->laser_pose;
+  SlamPipeline slam(config, Vec3(start.x, start.y, 0.0));
+  MonotonicClock clock;
+  GeometryCache geometries;
+  const auto run_start = Clock::now();
+  for (std::size_t i = 0; i < scans.size(); ++i) {
+    if (process::stop_requested()) {
+      run.stopped_early = true;
+      break;
+    }
+    const io::CarmenScan& carmen = *scans[i];
+    const double theta = carmen.laser_pose.theta;
+    Scan scan = io::to_core_scan(carmen, geometries.for_scan(carmen), i);
+    scan.stamp = clock.next(carmen.ipc_timestamp);
+    const auto started = Clock::now();
+    slam.add_imu({scan.stamp, yaw_rotation(theta), Vec3::Zero(), Vec3::Zero()});
+    const ScanReport report = slam.process_scan(scan);
+    run.scan_seconds.push_back(std::chrono::duration<double>(Clock::now() - started).count());
+    ++run.scans_in;
+    run.first_stamp = std::min(run.first_stamp, carmen.ipc_timestamp);
+    run.last_stamp = std::max(run.last_stamp, carmen.ipc_timestamp);
+    run.keyframes += report.map_updated;
+    if (report.accepted()) {
+      Pose pose = report.pose;
+      pose.stamp = carmen.ipc_timestamp;
+      run.accepted.push_back({carmen.ipc_timestamp, pose, theta});
+    }
+    if (progress && i % 200 == 0) progress(i, scans.size());
+  }
+  run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
+  run.outcomes = slam.outcome_counts();
+  run.map = slam.map().points();
+  if (progress) progress(run.scans_in, scans.size());
+}
+
+void write_estimate(const std::string& path, const std::vector<AcceptedScan>& accepted) {
+  std::ofstream out(path);
+  out << std::fixed;
+  for (const AcceptedScan& a : accepted) {
+    out << std::setprecision(6) << a.ipc_timestamp << ' ' << std::setprecision(6)
+        << a.pose.position.x() << ' ' << a.pose.position.y() << ' ' << a.theta << '\n';
+  }
+  if (!out) throw io::file_error(path, "cannot write");
+}
+
+nlohmann::json to_json(const LogRun& run, const std::string& log_path,
+                       const eval::SampleStats& ms) {
+  nlohmann::json rejected = nlohmann::json::object();
+  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
+    const auto outcome = ScanOutcome(k);
+    if (outcome != ScanOutcome::Accepted && outcome != ScanOutcome::MapInitialised) {
+      rejected[to_string(outcome)] = run.outcomes[k];
+    }
+  }
+  nlohmann::json j;
+  j["log"] = log_path;
+  j["stopped_early"] = run.stopped_early;
+  j["malformed_lines"] = run.malformed_lines;
+  j["problems"] = run.problems;
+  j["scans"] = {{"in", run.scans_in},
+                {"accepted", run.accepted_count()},
+                {"rejected", run.scans_in - run.accepted_count()},
+                {"rejected_by_reason", rejected}};
+  j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
+  j["matcher_ms_per_scan"] = {{"mean", ms.mean}, {"p50", ms.p50}, {"p99", ms.p99}, {"max", ms.max}};
+  j["read_seconds"] = run.read_seconds;
+  j["wall_seconds"] = run.wall_seconds;
+  j["log_seconds"] = run.log_seconds();
+  j["real_time_factor"] = run.wall_seconds > 0.0 ? run.log_seconds() / run.wall_seconds : 0.0;
+  return j;
+}
+
+void print_summary(std::ostream& out, const LogRun& run, const std::string& log_path,
+                   const eval::SampleStats& ms) {
+  out << "uavslam run: " << log_path << (run.stopped_early ? " (stopped early)" : "") << "\n";
+  out << "  scans             " << run.scans_in << " in, " << run.accepted_count() << " accepted, "
+      << run.scans_in - run.accepted_count() << " rejected";
+  std::string separator = " (";
+  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
+    const auto outcome = ScanOutcome(k);
+    if (outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised) continue;
+    if (run.outcomes[k] == 0) continue;
+    out << separator << to_string(outcome) << " " << run.outcomes[k];
+    separator = ", ";
+  }
+  out << (separator == ", " ? ")" : "") << "\n";
+  out << "  malformed lines   " << run.malformed_lines << "\n";
+  out << "  map               " << run.map.size() << " points from " << run.keyframes
+      << " keyframes\n";
+  out << std::fixed << std::setprecision(3) << "  matcher time      " << ms.mean
+      << " ms/scan mean, p99 " << ms.p99 << " ms, max " << ms.max << " ms\n";
+  const double factor = run.wall_seconds > 0.0 ? run.log_seconds() / run.wall_seconds : 0.0;
+  out << std::setprecision(2) << "  wall time         " << run.wall_seconds << " s for "
+      << run.log_seconds() << " s of log (" << std::setprecision(1) << factor
+      << "x real time); reading the log " << std::setprecision(2) << run.read_seconds << " s\n";
+}
+
+void write_outputs(const std::filesystem::path& out, const LogRun& run,
+                   const nlohmann::json& summary) {
+  std::filesystem::create_directories(out);
+  write_estimate((out / "estimate.txt").string(), run.accepted);
+  std::vector<Pose> poses;
+  poses.reserve(run.accepted.size());
+  for (const AcceptedScan& a : run.accepted) poses.push_back(a.pose);
+  io::write_tum((out / "estimate.tum").string(), poses);
+  io::write_ply((out / "map.ply").string(), run.map);
+  const std::string json_path = (out / "summary.json").string();
+  std::ofstream json(json_path);
+  json << summary.dump(2) << "\n";
+  if (!json) throw io::file_error(json_path, "cannot write");
+}
+
+int run_log(const RunOptions& o) {
+  const SlamConfig config = load_config(o.config, o.overrides);
+  if (!o.quiet) std::cerr << "reading " << o.carmen << " ...\n";
+  const auto read_start = std::chrono::steady_clock::now();
+  const io::CarmenLog log = io::read_carmen_log(o.carmen);
+  LogRun run;
+  run.read_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
+  run.malformed_lines = log.malformed_lines;
+  run.problems = log.problems;
+  for (const std::string& problem : log.problems) std::cerr << "skipped " << problem << "\n";
+  process_log(log, config, run, [&](std::size_t done, std::size_t total) {
+    if (!o.quiet) report_progress("SLAM", done, total);
+  });
+  std::vector<double> ms;
+  ms.reserve(run.scan_seconds.size());
+  for (double seconds : run.scan_seconds) ms.push_back(seconds * 1e3);
+  const eval::SampleStats stats = eval::summarize(ms);
+  write_outputs(o.out, run, to_json(run, o.carmen, stats));
+  print_summary(std::cout, run, o.carmen, stats);
+  std::cout << "  outputs           " << o.out
+            << "/{estimate.txt, estimate.tum, map.ply, summary.json}\n";
+  return run.stopped_early ? 130 : 0;
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "run",
+      "Run the SLAM pipeline over a CARMEN log (e.g. the Freiburg benchmark's intel.clf) in file "
+      "order, the orientation from the odometry heading, and write OUT/estimate.txt (ipc_timestamp "
+      "x y theta per accepted scan, for `uavslam eval --relations`), OUT/estimate.tum, OUT/map.ply "
+      "and OUT/summary.json");
+  cmd->add_option("--carmen", options->carmen, "CARMEN log (.clf)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", options->out, "output folder (created)")->required();
+  cmd->add_option("--config", options->config,
+                  "SLAM parameters YAML (e.g. config/slam_2d_logs.yaml; default: the built-in "
+                  "defaults, as in config/slam.yaml)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--set", options->overrides,
+                  "override one SLAM parameter, e.g. --set icp.iterations=12 (repeatable)");
+  cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
+  cmd->callback([options, &exit_code] { exit_code = run_log(*options); });
+}
+
+}  // namespace uavslam::cli
