@@ -109,6 +109,30 @@ class GeometryCache {
   double max_range_ = 0.0;
 };
 
+// The ICP's motion prior (icp.motion_prior: odometry): how far the laser's odometry position moved
+// since the last scan the pipeline accepted, whose position is where the ICP would otherwise start
+// (a rejected scan leaves the pipeline's position where it was). The pipeline's frame is the
+// odometry's (it starts at the first laser pose and turns with the odometry heading), so the
+// odometry's change is the predicted motion as it is.
+class OdometryMotion {
+ public:
+  explicit OdometryMotion(bool enabled) : enabled_(enabled) {}
+
+  Vec3 predicted(const io::CarmenPose2& odometry) const {
+    if (!enabled_ || !has_last_) return Vec3::Zero();
+    return {odometry.x - last_.x, odometry.y - last_.y, 0.0};
+  }
+  void accepted(const io::CarmenPose2& odometry) {
+    last_ = odometry;
+    has_last_ = true;
+  }
+
+ private:
+  bool enabled_;
+  bool has_last_ = false;
+  io::CarmenPose2 last_;
+};
+
 std::vector<const io::CarmenScan*> scans_in_file_order(const io::CarmenLog& log) {
   std::vector<const io::CarmenScan*> scans;
   for (const io::CarmenMessage& message : log.messages) {
@@ -128,6 +152,7 @@ void process_log(const io::CarmenLog& log, const SlamConfig& config, LogRun& run
   SlamPipeline slam(config, Vec3(start.x, start.y, 0.0));
   MonotonicClock clock;
   GeometryCache geometries;
+  OdometryMotion odometry_motion(config.icp.motion_prior == "odometry");
   const auto run_start = Clock::now();
   for (std::size_t i = 0; i < scans.size(); ++i) {
     if (process::stop_requested()) {
@@ -140,13 +165,14 @@ void process_log(const io::CarmenLog& log, const SlamConfig& config, LogRun& run
     scan.stamp = clock.next(carmen.ipc_timestamp);
     const auto started = Clock::now();
     slam.add_imu({scan.stamp, yaw_rotation(theta), Vec3::Zero(), Vec3::Zero()});
-    const ScanReport report = slam.process_scan(scan);
+    const ScanReport report = slam.process_scan(scan, odometry_motion.predicted(carmen.laser_pose));
     run.scan_seconds.push_back(std::chrono::duration<double>(Clock::now() - started).count());
     ++run.scans_in;
     run.first_stamp = std::min(run.first_stamp, carmen.ipc_timestamp);
     run.last_stamp = std::max(run.last_stamp, carmen.ipc_timestamp);
     run.keyframes += report.map_updated;
     if (report.accepted()) {
+      odometry_motion.accepted(carmen.laser_pose);
       Pose pose = report.pose;
       pose.stamp = carmen.ipc_timestamp;
       run.accepted.push_back({carmen.ipc_timestamp, pose, theta});

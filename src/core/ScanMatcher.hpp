@@ -71,7 +71,7 @@ class ScanMatcher {
   explicit ScanMatcher(const SlamConfig::Icp& config);
 
   // scan: world-oriented points relative to the body origin; initial: the body position to start
-  // from (the last position: the seed uses no motion model).
+  // from (the last position, as the seed, which has no motion model; or the caller's prediction).
   MatchResult match(const WorldMap& map, const ScanPoints& scan, const Vec3& initial) const;
 
  private:

@@ -22,6 +22,10 @@ struct SlamConfig {
     // Per-axis weights of eq. 5.17: level beams inform x-y, floor/ceiling beams z (a planar scan
     // sees height only through beams a mirror deflects). false: every pair informs every axis.
     bool split_axes = true;
+    // Where the ICP starts: "none" = the last position (the seed: no motion model) | "odometry" =
+    // the last position plus the odometry's motion since the previous scan. The caller that owns
+    // the odometry supplies the motion (SlamPipeline::process_scan); the core only adds it.
+    std::string motion_prior = "none";
   } icp;
 
   // The nearest-neighbour search: FLANN approximate kd-trees (real time) or exact (reference).

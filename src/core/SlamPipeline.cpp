@@ -29,7 +29,7 @@ void SlamPipeline::add_imu(const ImuSample& sample) {
   imu_.add(sample);
 }
 
-ScanReport SlamPipeline::process_scan(const Scan& scan) {
+ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_motion) {
   ScanReport report;
   report.pose = pose_;
   if (!is_well_formed(scan)) return finish(report);
@@ -63,8 +63,10 @@ ScanReport SlamPipeline::process_scan(const Scan& scan) {
     return finish(report);
   }
 
-  // Steps 3-5: translation-only ICP from the last position.
-  const MatchResult match = matcher_.match(map_, points, pose_.position);
+  // Steps 3-5: translation-only ICP from the last position (the seed) moved by the prediction.
+  // The matcher measures its correction, and so the seed's 1 m "distance moved" check, from this
+  // start: the check limits what the matcher changed, not the predicted motion itself.
+  const MatchResult match = matcher_.match(map_, points, pose_.position + predicted_motion);
   report.outcome = match.outcome;
   report.error_before = match.error_before;
   report.error_after = match.error_after;

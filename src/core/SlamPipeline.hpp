@@ -38,7 +38,10 @@ class SlamPipeline {
   explicit SlamPipeline(const SlamConfig& config, const Vec3& initial_position = Vec3::Zero());
 
   void add_imu(const ImuSample& sample);
-  ScanReport process_scan(const Scan& scan);
+  // predicted_motion: the body's translation since the previous scan as another source predicts
+  // it (e.g. wheel odometry); the ICP starts from the last position plus it. Zero (the default) is
+  // the seed, which has no motion model.
+  ScanReport process_scan(const Scan& scan, const Vec3& predicted_motion = Vec3::Zero());
 
   const WorldMap& map() const { return map_; }
   const Pose& pose() const { return pose_; }

@@ -46,6 +46,10 @@ const std::vector<Parameter>& parameters() {
        }},
       {"icp", "split_axes",
        [](SlamConfig& c, const YamlReader& v) { c.icp.split_axes = v.as_bool(); }},
+      {"icp", "motion_prior",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.motion_prior = v.as_choice({"none", "odometry"});
+       }},
       {"nearest_neighbour", "index",
        [](SlamConfig& c, const YamlReader& v) {
          c.nearest_neighbour.index = v.as_choice({"flann", "exact", "brute"});

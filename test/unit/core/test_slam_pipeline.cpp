@@ -102,5 +102,31 @@ TEST_F(PipelineInRoom, TracksAFlightAndAddsKeyframesAfterEnoughMotion) {
   EXPECT_EQ(slam.map().size(), keyframes * 216u);
 }
 
+// A jump of 1.3 m between two scans: beyond the 0.3 m correspondence gate and beyond the seed's
+// 1 m "distance moved" limit, so from the last position the matcher cannot find the scan.
+TEST_F(PipelineInRoom, AMotionPriorStartsTheMatcherWhereTheVehicleWent) {
+  config.nearest_neighbour.index = "exact";
+  const Vec3 moved = start + Vec3(1.2, 0.5, 0.0);
+  const auto run = [&](const Vec3& predicted_motion) {
+    SlamPipeline slam(config, start);
+    slam.add_imu(level_imu(0.0));
+    slam.add_imu(level_imu(0.1));
+    EXPECT_TRUE(slam.process_scan(room.scan_at(pose_at(start, 0.0), 0.0)).accepted());
+    return slam.process_scan(room.scan_at(pose_at(moved, 0.1), 0.1), predicted_motion);
+  };
+
+  // The seed: no prior, the ICP starts from the last position and does not reach the scan.
+  const ScanReport without = run(Vec3::Zero());
+  EXPECT_FALSE(without.accepted() && (without.pose.position - moved).norm() < 0.05)
+      << to_string(without.outcome);
+
+  // A prediction 7 cm off (odometry is never exact): the matcher corrects the rest, and the 1 m
+  // limit applies to that correction, not to the predicted motion.
+  const ScanReport with = run(Vec3(1.15, 0.55, 0.0));
+  ASSERT_TRUE(with.accepted()) << to_string(with.outcome);
+  EXPECT_LT((with.pose.position - moved).head<2>().norm(), 0.02);
+  EXPECT_EQ(with.pose.position.z(), start.z());
+}
+
 }  // namespace
 }  // namespace uavslam

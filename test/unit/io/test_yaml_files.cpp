@@ -256,6 +256,7 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.scan.subsample_every, defaults.scan.subsample_every);
   EXPECT_EQ(config.icp.iterations, defaults.icp.iterations);
   EXPECT_EQ(config.icp.max_translation, defaults.icp.max_translation);
+  EXPECT_EQ(config.icp.motion_prior, defaults.icp.motion_prior);
   EXPECT_EQ(config.icp.max_error_after, defaults.icp.max_error_after);
   EXPECT_EQ(config.icp.max_error_ratio, defaults.icp.max_error_ratio);
   EXPECT_EQ(config.icp.max_correspondence_distance, defaults.icp.max_correspondence_distance);
@@ -285,6 +286,7 @@ icp:
   max_error_after: 0.1
   max_error_ratio: 0.9
   max_correspondence_distance: 1.5
+  motion_prior: odometry
 nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
 map: {keyframe_height: 0.1, keyframe_lateral: 0.25}
 imu: {max_gap: 0.02}
@@ -296,6 +298,7 @@ imu: {max_gap: 0.02}
   EXPECT_EQ(c.icp.max_error_after, 0.1);
   EXPECT_EQ(c.icp.max_error_ratio, 0.9);
   EXPECT_EQ(c.icp.max_correspondence_distance, 1.5);
+  EXPECT_EQ(c.icp.motion_prior, "odometry");
   EXPECT_EQ(c.nearest_neighbour.index, "exact");
   EXPECT_EQ(c.nearest_neighbour.flann_trees, 8);
   EXPECT_EQ(c.nearest_neighbour.flann_checks, 128);
