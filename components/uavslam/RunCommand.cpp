@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.hpp"
+#include "RunSummary.hpp"
 #include "common/StopRequest.hpp"
 #include "core/SlamPipeline.hpp"
 #include "eval/Percentile.hpp"
@@ -63,7 +64,7 @@ struct AcceptedScan {
 struct LogRun {
   std::vector<AcceptedScan> accepted;
   std::vector<double> scan_seconds;
-  std::array<std::size_t, kScanOutcomeCount> outcomes{};
+  OutcomeCounts outcomes{};
   std::size_t scans_in = 0;
   std::size_t keyframes = 0;
   std::size_t malformed_lines = 0;
@@ -76,10 +77,7 @@ struct LogRun {
   bool stopped_early = false;
 
   double log_seconds() const { return scans_in > 0 ? last_stamp - first_stamp : 0.0; }
-  std::size_t accepted_count() const {
-    return outcomes[std::size_t(ScanOutcome::Accepted)] +
-           outcomes[std::size_t(ScanOutcome::MapInitialised)];
-  }
+  std::size_t accepted_count() const { return cli::accepted_count(outcomes); }
 };
 
 Eigen::Quaterniond yaw_rotation(double theta) {
@@ -197,13 +195,7 @@ void write_estimate(const std::string& path, const std::vector<AcceptedScan>& ac
 
 nlohmann::json to_json(const LogRun& run, const std::string& log_path,
                        const eval::SampleStats& ms) {
-  nlohmann::json rejected = nlohmann::json::object();
-  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
-    const auto outcome = ScanOutcome(k);
-    if (outcome != ScanOutcome::Accepted && outcome != ScanOutcome::MapInitialised) {
-      rejected[to_string(outcome)] = run.outcomes[k];
-    }
-  }
+  const nlohmann::json rejected = rejected_by_reason(run.outcomes);
   nlohmann::json j;
   j["log"] = log_path;
   j["stopped_early"] = run.stopped_early;
@@ -225,17 +217,7 @@ nlohmann::json to_json(const LogRun& run, const std::string& log_path,
 void print_summary(std::ostream& out, const LogRun& run, const std::string& log_path,
                    const eval::SampleStats& ms) {
   out << "uavslam run: " << log_path << (run.stopped_early ? " (stopped early)" : "") << "\n";
-  out << "  scans             " << run.scans_in << " in, " << run.accepted_count() << " accepted, "
-      << run.scans_in - run.accepted_count() << " rejected";
-  std::string separator = " (";
-  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
-    const auto outcome = ScanOutcome(k);
-    if (outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised) continue;
-    if (run.outcomes[k] == 0) continue;
-    out << separator << to_string(outcome) << " " << run.outcomes[k];
-    separator = ", ";
-  }
-  out << (separator == ", " ? ")" : "") << "\n";
+  print_scan_counts(out, run.scans_in, run.outcomes);
   out << "  malformed lines   " << run.malformed_lines << "\n";
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";

@@ -11,8 +11,7 @@ double RunSummary::real_time_factor() const {
 }
 
 std::size_t RunSummary::accepted() const {
-  return run->outcomes[std::size_t(ScanOutcome::Accepted)] +
-         run->outcomes[std::size_t(ScanOutcome::MapInitialised)];
+  return accepted_count(run->outcomes);
 }
 
 RunSummary summarize_run(const std::string& scenario, const SlamRun& run, double flight_seconds) {
@@ -43,21 +42,46 @@ void print_errors(std::ostream& out, const eval::TrajectoryErrors& e) {
   out << "  final position    " << e.final_position_error << " m off\n";
 }
 
+namespace {
+bool is_accepted(ScanOutcome outcome) {
+  return outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised;
+}
+}  // namespace
+
+std::size_t accepted_count(const OutcomeCounts& outcomes) {
+  std::size_t accepted = 0;
+  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
+    if (is_accepted(ScanOutcome(k))) accepted += outcomes[k];
+  }
+  return accepted;
+}
+
+void print_scan_counts(std::ostream& out, std::size_t scans_in, const OutcomeCounts& outcomes) {
+  const std::size_t accepted = accepted_count(outcomes);
+  out << "  scans             " << scans_in << " in, " << accepted << " accepted, "
+      << scans_in - accepted << " rejected";
+  std::string separator = " (";
+  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
+    if (is_accepted(ScanOutcome(k)) || outcomes[k] == 0) continue;
+    out << separator << to_string(ScanOutcome(k)) << " " << outcomes[k];
+    separator = ", ";
+  }
+  out << (separator == ", " ? ")" : "") << "\n";
+}
+
+nlohmann::json rejected_by_reason(const OutcomeCounts& outcomes) {
+  nlohmann::json rejected = nlohmann::json::object();
+  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
+    if (!is_accepted(ScanOutcome(k))) rejected[to_string(ScanOutcome(k))] = outcomes[k];
+  }
+  return rejected;
+}
+
 void print_summary(std::ostream& out, const RunSummary& s) {
   const SlamRun& run = *s.run;
   out << "uavslam simulate: " << s.scenario << (run.stopped_early ? " (stopped early)" : "")
       << "\n";
-  out << "  scans             " << run.scans_in << " in, " << s.accepted() << " accepted, "
-      << run.scans_in - s.accepted() << " rejected";
-  std::string sep = " (";
-  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
-    const auto outcome = ScanOutcome(k);
-    if (outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised) continue;
-    if (run.outcomes[k] == 0) continue;
-    out << sep << to_string(outcome) << " " << run.outcomes[k];
-    sep = ", ";
-  }
-  out << (sep == ", " ? ")" : "") << "\n";
+  print_scan_counts(out, run.scans_in, run.outcomes);
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
   if (s.errors) {
@@ -93,13 +117,7 @@ nlohmann::json to_json(const eval::TrajectoryErrors& e) {
 
 nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
   const SlamRun& run = *s.run;
-  nlohmann::json rejected = nlohmann::json::object();
-  for (std::size_t k = 0; k < kScanOutcomeCount; ++k) {
-    const auto outcome = ScanOutcome(k);
-    if (outcome != ScanOutcome::Accepted && outcome != ScanOutcome::MapInitialised) {
-      rejected[to_string(outcome)] = run.outcomes[k];
-    }
-  }
+  const nlohmann::json rejected = rejected_by_reason(run.outcomes);
   nlohmann::json j;
   j["scenario"] = s.scenario;
   j["stopped_early"] = run.stopped_early;

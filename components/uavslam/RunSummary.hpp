@@ -2,6 +2,7 @@
 // errors against the ground truth and timing; printed for people and written as summary.json.
 #pragma once
 
+#include <array>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -27,6 +28,15 @@ struct RunSummary {
 };
 
 RunSummary summarize_run(const std::string& scenario, const SlamRun& run, double flight_seconds);
+
+// How many scans ended in each outcome (SlamPipeline::outcome_counts()).
+using OutcomeCounts = std::array<std::size_t, kScanOutcomeCount>;
+
+// "  scans             N in, A accepted, R rejected (reason n, ...)" and its JSON: the rejected
+// scans by reason.
+void print_scan_counts(std::ostream& out, std::size_t scans_in, const OutcomeCounts& outcomes);
+nlohmann::json rejected_by_reason(const OutcomeCounts& outcomes);
+std::size_t accepted_count(const OutcomeCounts& outcomes);
 
 void print_summary(std::ostream& out, const RunSummary& summary);
 nlohmann::json to_json(const RunSummary& summary, const SlamConfig& config);
