@@ -15,6 +15,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 
 #include <fastdds/dds/core/policy/QosPolicies.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
@@ -114,6 +115,39 @@ class EndpointStatus {
   eprosima::fastdds::dds::QosPolicyId_t last_policy_ =
       eprosima::fastdds::dds::INVALID_QOS_POLICY_ID;
   std::size_t received_ = 0;
+};
+
+// What a Writer and a Reader have in common: the topic and profile they were made with, and
+// their matching and incompatible-QoS state (fed by their listeners, waited on by the application).
+class Endpoint {
+ public:
+  const std::string& topic() const { return topic_; }
+  const std::string& profile() const { return profile_; }
+
+  // Peers currently matched, and waiting (condition variable, no polling) until at least `count`
+  // are; false on timeout.
+  std::size_t matched() const { return status_.matched(); }
+  bool wait_for_matched(std::size_t count, std::chrono::milliseconds timeout) const {
+    return status_.wait_for_matched(count, timeout);
+  }
+
+  // Peers found on the topic whose QoS cannot match ours, in total, and the policy that failed
+  // last ("RELIABILITY", "DURABILITY", "DEADLINE", ...).
+  std::size_t incompatible_qos_count() const { return status_.incompatible_qos_count(); }
+  std::string last_incompatible_policy() const { return status_.last_incompatible_policy(); }
+  bool wait_for_incompatible_qos(std::size_t count, std::chrono::milliseconds timeout) const {
+    return status_.wait_for_incompatible_qos(count, timeout);
+  }
+
+ protected:
+  Endpoint(std::string topic, std::string profile)
+      : topic_(std::move(topic)), profile_(std::move(profile)) {}
+
+  EndpointStatus status_;
+
+ private:
+  std::string topic_;
+  std::string profile_;
 };
 
 // Create / delete the DDS entities of Writer and Reader (non-template parts). Creation throws

@@ -17,7 +17,7 @@
 namespace uavslam::dds {
 
 template <typename PubSubType>
-class Reader {
+class Reader : public detail::Endpoint {
  public:
   using Sample = typename PubSubType::type;
   using Callback =
@@ -31,10 +31,9 @@ class Reader {
   // in '<path>'" when the profile is not defined, or when Fast DDS refuses the reader.
   Reader(Participant& participant, const std::string& topic, const std::string& profile,
          Callback on_sample)
-      : lifetime_(participant.lifetime()),
+      : detail::Endpoint(topic, profile),
+        lifetime_(participant.lifetime()),
         subscriber_(&participant.subscriber()),
-        topic_(topic),
-        profile_(profile),
         on_sample_(std::move(on_sample)) {
     reader_ = detail::create_reader(participant, participant.topic<PubSubType>(topic), profile,
                                     &listener_);
@@ -44,21 +43,6 @@ class Reader {
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
 
-  // Writers currently matched, and waiting (condition variable, no polling) until at least
-  // `count` are; false on timeout.
-  std::size_t matched() const { return status_.matched(); }
-  bool wait_for_matched(std::size_t count, std::chrono::milliseconds timeout) const {
-    return status_.wait_for_matched(count, timeout);
-  }
-
-  // Writers found on the topic that do not offer the QoS this reader requests, in total, and the
-  // policy that failed last ("RELIABILITY", "DURABILITY", "DEADLINE", ...).
-  std::size_t incompatible_qos_count() const { return status_.incompatible_qos_count(); }
-  std::string last_incompatible_policy() const { return status_.last_incompatible_policy(); }
-  bool wait_for_incompatible_qos(std::size_t count, std::chrono::milliseconds timeout) const {
-    return status_.wait_for_incompatible_qos(count, timeout);
-  }
-
   // Samples handed to the callback so far (counted after it returns), and waiting until at least
   // `count` were; false on timeout.
   std::size_t received() const { return status_.received(); }
@@ -67,8 +51,6 @@ class Reader {
   }
   std::size_t callback_errors() const { return callback_errors_; }
 
-  const std::string& topic() const { return topic_; }
-  const std::string& profile() const { return profile_; }
   eprosima::fastdds::dds::DataReader& native() { return *reader_; }
 
  private:
@@ -107,10 +89,7 @@ class Reader {
 
   std::shared_ptr<detail::Lifetime> lifetime_;
   eprosima::fastdds::dds::Subscriber* subscriber_;
-  std::string topic_;
-  std::string profile_;
   Callback on_sample_;
-  detail::EndpointStatus status_;
   std::atomic<std::size_t> callback_errors_{0};
   Listener listener_{*this};
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;

@@ -18,7 +18,7 @@
 namespace uavslam::dds {
 
 template <typename PubSubType>
-class Writer {
+class Writer : public detail::Endpoint {
  public:
   using Sample = typename PubSubType::type;
 
@@ -26,10 +26,9 @@ class Writer {
   // DdsError "unknown writer profile '<profile>' for topic '<topic>' in '<path>'" when the
   // profile is not defined, or when Fast DDS refuses the writer.
   Writer(Participant& participant, const std::string& topic, const std::string& profile)
-      : lifetime_(participant.lifetime()),
-        publisher_(&participant.publisher()),
-        topic_(topic),
-        profile_(profile) {
+      : detail::Endpoint(topic, profile),
+        lifetime_(participant.lifetime()),
+        publisher_(&participant.publisher()) {
     writer_ = detail::create_writer(participant, participant.topic<PubSubType>(topic), profile,
                                     &listener_);
   }
@@ -55,23 +54,6 @@ class Writer {
     return writer_->wait_for_acknowledgments(max_wait) == ReturnCode_t::RETCODE_OK;
   }
 
-  // Readers currently matched, and waiting (condition variable, no polling) until at least
-  // `count` are; false on timeout.
-  std::size_t matched() const { return status_.matched(); }
-  bool wait_for_matched(std::size_t count, std::chrono::milliseconds timeout) const {
-    return status_.wait_for_matched(count, timeout);
-  }
-
-  // Readers found on the topic whose requested QoS this writer cannot offer, in total, and the
-  // policy that failed last ("RELIABILITY", "DURABILITY", "DEADLINE", ...).
-  std::size_t incompatible_qos_count() const { return status_.incompatible_qos_count(); }
-  std::string last_incompatible_policy() const { return status_.last_incompatible_policy(); }
-  bool wait_for_incompatible_qos(std::size_t count, std::chrono::milliseconds timeout) const {
-    return status_.wait_for_incompatible_qos(count, timeout);
-  }
-
-  const std::string& topic() const { return topic_; }
-  const std::string& profile() const { return profile_; }
   eprosima::fastdds::dds::DataWriter& native() { return *writer_; }
 
  private:
@@ -98,9 +80,6 @@ class Writer {
 
   std::shared_ptr<detail::Lifetime> lifetime_;
   eprosima::fastdds::dds::Publisher* publisher_;
-  std::string topic_;
-  std::string profile_;
-  detail::EndpointStatus status_;
   Listener listener_{status_};
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
 };

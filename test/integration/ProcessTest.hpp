@@ -3,8 +3,6 @@
 // own DDS domain. It cleans up after every test, passed or failed.
 #pragma once
 
-#include <stdlib.h>  // mkdtemp
-
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -15,35 +13,20 @@
 
 #include <gtest/gtest.h>
 
+#include "TempDirTest.hpp"
 #include "common/ChildProcess.hpp"
 
 namespace uavslam::test {
 
-class ProcessTest : public ::testing::Test {
+class ProcessTest : public TempDirTest {
  protected:
-  void SetUp() override {
-    const std::string suite =
-        ::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name();
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / ("uavslam_" + suite + "_XXXXXX")).string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr) << pattern;
-    dir = pattern;
-  }
-
-  // Google Test runs this after a failed SetUp or test body too.
   void TearDown() override {
-    if (!dir.empty()) {
-      std::error_code ignored;
-      std::filesystem::remove_all(dir, ignored);
-    }
+    TempDirTest::TearDown();
     // Processes that were killed leave their shared-memory segments behind.
     if (std::system("fastdds shm clean > /dev/null 2>&1") != 0) {
       ADD_FAILURE() << "fastdds shm clean failed";
     }
   }
-
-  // A file in this test's directory.
-  std::string path(const std::string& name) const { return (dir / name).string(); }
 
   // Where a process started as `name` writes its stdout and stderr.
   std::string log_path(const std::string& name) const { return path(name + ".log"); }
@@ -86,8 +69,6 @@ class ProcessTest : public ::testing::Test {
     const auto now = std::chrono::system_clock::now().time_since_epoch();
     return std::to_string(std::chrono::duration<double>(now).count() + 3.0);
   }
-
-  std::filesystem::path dir;
 };
 
 }  // namespace uavslam::test

@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "TempDirTest.hpp"
 #include "io/PlyFile.hpp"
 #include "io/TumFile.hpp"
 
@@ -45,21 +46,7 @@ std::string source(const std::string& relative) {
   return std::string(UAVSLAM_SOURCE_DIR) + "/" + relative;
 }
 
-class UavslamCli : public ::testing::Test {
- protected:
-  fs::path dir;
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "uavslam_cli_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir = pattern;
-  }
-  void TearDown() override { fs::remove_all(dir); }
-
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir / name) << text;
-    return (dir / name).string();
-  }
-};
+using UavslamCli = uavslam::test::TempDirTest;
 
 TEST_F(UavslamCli, SimulateTracksTheShortFlightAndWritesEveryOutput) {
   const fs::path out = dir / "out";

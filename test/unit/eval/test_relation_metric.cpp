@@ -1,7 +1,5 @@
 // The Freiburg benchmark metric (Kümmerle et al. 2009) on hand-computed cases, its file readers,
 // and the benchmark's own relation files when the shared data folder is present.
-#include <unistd.h>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +9,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "TempDirTest.hpp"
 #include "eval/RelationMetric.hpp"
 #include "io/RelationsFile.hpp"
 
@@ -143,20 +142,7 @@ TEST(RelationMetric, RelationsWithoutAnEstimateAreCountedAsUnmatched) {
   EXPECT_EQ(e.short_span.unmatched, 2u);
 }
 
-class RelationFiles : public ::testing::Test {
- protected:
-  fs::path dir;
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "uavslam_relations_XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    dir = pattern;
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir / name) << text;
-    return (dir / name).string();
-  }
-};
+using RelationFiles = uavslam::test::TempDirTest;
 
 TEST_F(RelationFiles, StampsPrintedTheSameWayMatchExactly) {
   const std::string relations =
