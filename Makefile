@@ -7,7 +7,7 @@ JOBS       ?= $(shell nproc)
 export CCACHE_BASEDIR := $(CURDIR)
 UAVSLAM    := $(BUILD)/bin/uavslam
 
-.PHONY: all deps configure build demo simulate test test-unit test-asan bench bench-latency sweep \
+.PHONY: all deps configure build demo simulate test test-unit test-asan bench bench-latency sweep real-logs \
         format format-check clean
 
 all: build
@@ -60,6 +60,10 @@ bench-latency: build
 sweep: build
 	$(UAVSLAM) sweep --scenario config/scenarios/demo.yaml --config config/slam.yaml \
 	  --iterations 1,2,3,5,10,20 --checks exact,16,64
+
+# The Freiburg benchmark table of README "Real logs" (needs ../shared/data/freiburg; ~5 min).
+real-logs: build
+	bash test/bench/real_logs_table.sh --build-dir $(BUILD)
 
 format:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

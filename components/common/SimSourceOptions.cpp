@@ -3,14 +3,38 @@
 #include "common/NodeOptions.hpp"
 
 namespace uavslam::process {
+namespace {
+
+constexpr const char* kCarmenPrefix = "carmen:";
+
+bool is_carmen_source(const std::string& source) {
+  return source.rfind(kCarmenPrefix, 0) == 0 && source.size() > std::string(kCarmenPrefix).size();
+}
+
+// Empty when `source` names a source this process can read, else what is wrong with it.
+std::string source_problem(const std::string& source) {
+  if (source == "sim" || is_carmen_source(source)) return {};
+  return "expected sim or carmen:FILE (a CARMEN log), got '" + source + "'";
+}
+
+}  // namespace
+
+std::optional<std::string> carmen_log_path(const SimSourceOptions& options) {
+  if (!is_carmen_source(options.source)) return std::nullopt;
+  return options.source.substr(std::string(kCarmenPrefix).size());
+}
 
 void add_sim_source_options(CLI::App& app, SimSourceOptions& options) {
-  app.add_option("--source", options.source, "where the data comes from")
-      ->check(CLI::IsMember({"sim"}))
+  app.add_option("--source", options.source,
+                 "where the data comes from: sim (the flight simulator along --scenario) or "
+                 "carmen:FILE (replay a CARMEN log's laser scans, e.g. the Freiburg benchmark's "
+                 "intel.clf, at the recorded pace times --rate)")
+      ->check(CLI::Validator(source_problem, "sim|carmen:FILE", "source"))
       ->capture_default_str();
   app.add_option("--scenario", options.scenario, "scenario YAML for the sim source")
       ->capture_default_str();
-  app.add_option("--rate", options.rate, "publish this many times faster than real time")
+  app.add_option("--rate", options.rate,
+                 "publish this many times faster than real time (carmen: than recorded)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--wait-for-subscribers", options.wait_for_subscribers,
@@ -18,14 +42,18 @@ void add_sim_source_options(CLI::App& app, SimSourceOptions& options) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--duration", options.duration,
-                 "publish only the first this many seconds of the flight (0: all of it)")
+                 "publish only the first this many seconds of the flight or log (0: all of it)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--start-at", options.start_at,
                  "system-clock time (s since 1970) at which the flight's first sample is due; give "
                  "lidar_driver and imu_bridge the same value so their streams share one timeline "
-                 "(samples overdue when the process is ready are skipped); 0: start when ready")
+                 "(sim: samples overdue when the process is ready are skipped; carmen: every scan "
+                 "is published, the late ones counted); 0: start when ready")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--max-scans", options.max_scans,
+                 "carmen: replay only the log's first this many scans (0: all of them)")
+      ->capture_default_str();
 }
 
 RealTimePacer make_pacer(const SimSourceOptions& options, double flight_start) {
@@ -40,12 +68,16 @@ bool within_duration(const SimSourceOptions& options, double flight_start, doubl
 void apply_sim_source_config(const CLI::App& app, const io::YamlReader& section,
                              SimSourceOptions& options,
                              const std::vector<std::string>& extra_keys) {
-  std::vector<std::string> keys{"source",   "scenario", "rate", "wait_for_subscribers",
-                                "duration", "start_at"};
+  std::vector<std::string> keys{"source",   "scenario", "rate",     "wait_for_subscribers",
+                                "duration", "start_at", "max_scans"};
   keys.insert(keys.end(), extra_keys.begin(), extra_keys.end());
   section.expect_keys_only(keys);
   if (unset(app, "--source") && section.has("source")) {
-    options.source = section.at("source").as_choice({"sim"});
+    const io::YamlReader source = section.at("source");
+    options.source = source.as_string();
+    if (!source_problem(options.source).empty()) {
+      source.fail_expected("sim or carmen:FILE (a CARMEN log)");
+    }
   }
   if (unset(app, "--scenario")) {
     options.scenario = section.get_string_or("scenario", options.scenario);
@@ -64,6 +96,10 @@ void apply_sim_source_config(const CLI::App& app, const io::YamlReader& section,
   if (unset(app, "--duration")) {
     options.duration =
         section.get_double_or("duration", options.duration, io::NumberRange::non_negative());
+  }
+  if (unset(app, "--max-scans")) {
+    options.max_scans = static_cast<std::size_t>(section.get_int_or(
+        "max_scans", static_cast<int>(options.max_scans), io::NumberRange::at_least(0)));
   }
 }
 

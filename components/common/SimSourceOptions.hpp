@@ -1,7 +1,10 @@
 // The options of a sensor process whose data comes from a source: `sim` (the flight simulator
-// along a scenario) for now; real devices and logs come later.
+// along a scenario) or `carmen:FILE` (a recorded CARMEN log replayed at its recorded pace);
+// real devices come later.
 #pragma once
 
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,15 +16,20 @@
 namespace uavslam::process {
 
 struct SimSourceOptions {
-  std::string source = "sim";
+  std::string source = "sim";  // "sim" or "carmen:FILE"
   std::string scenario = "config/scenarios/demo.yaml";
   double rate = 1.0;             // times real time
   int wait_for_subscribers = 0;  // hold the first sample until this many readers have matched
   double duration = 0.0;         // s of the flight to publish from its start; 0: all of it
   double start_at = 0.0;  // system-clock time (s since the epoch) the flight starts; 0: when ready
+  std::size_t max_scans = 0;  // carmen: replay only this many scans of the log; 0: all of them
 };
 
-// Registers --source, --scenario, --rate, --wait-for-subscribers, --duration, --start-at.
+// The log of a `carmen:FILE` source; nullopt for `sim`.
+std::optional<std::string> carmen_log_path(const SimSourceOptions& options);
+
+// Registers --source, --scenario, --rate, --wait-for-subscribers, --duration, --start-at,
+// --max-scans.
 void add_sim_source_options(CLI::App& app, SimSourceOptions& options);
 // Fills what the command line left unset from the process's config section.
 // `extra_keys`: the process's own keys in the same section.

@@ -1,15 +1,22 @@
 // imu_bridge: publishes the `imu` topic. Source `sim`: the flight simulator's IMU along the same
 // scenario (same seed) as the lidar_driver's, so the two agree on the flight; real time or
-// `--rate` times faster.
+// `--rate` times faster. Source `carmen:FILE`: the robots of CARMEN logs had no IMU, their wheel
+// odometry is their only rotation sensor (and it drifts): one orientation sample per laser scan,
+// at the scan's timeline stamp, the yaw of the laser pose's odometry heading, published a little
+// ahead of the lidar_driver's scan on the shared --start-at timeline (CarmenReplay.hpp).
 #include <chrono>
 #include <iostream>
+#include <optional>
+#include <string>
 
 #include <msg/ImuPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
+#include "common/CarmenReplay.hpp"
 #include "common/IncompatibleQos.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/PacedStream.hpp"
+#include "common/ReaderGrace.hpp"
 #include "common/RunNode.hpp"
 #include "common/SimSourceOptions.hpp"
 #include "common/StopRequest.hpp"
@@ -17,6 +24,7 @@
 #include "dds/Participant.hpp"
 #include "dds/Topics.hpp"
 #include "dds/Writer.hpp"
+#include "io/CarmenScanStream.hpp"
 #include "io/ScenarioFile.hpp"
 #include "sim/FlightSimulator.hpp"
 
@@ -47,14 +55,64 @@ int publish_imu(const process::NodeOptions& node, const process::SimSourceOption
       });
   std::cerr << "imu_bridge: published " << counts.published << " samples, " << counts.missed
             << " overdue and skipped" << (process::stop_requested() ? " (stopped)" : "") << "\n";
+  process::give_readers_the_last_samples();
   return qos.exit_code();
+}
+
+// The odometry heading as an orientation sample; no rates or accelerations (none were logged).
+ImuSample orientation_of(const io::TimedCarmenScan& scan) {
+  ImuSample sample;
+  sample.stamp = scan.stamp;
+  sample.orientation =
+      Eigen::Quaterniond(Eigen::AngleAxisd(scan.scan.laser_pose.theta, Vec3::UnitZ()));
+  sample.angular_velocity = Vec3::Zero();
+  sample.linear_acceleration = Vec3::Zero();
+  return sample;
+}
+
+int replay_headings(const process::NodeOptions& node, const process::SimSourceOptions& o,
+                    const std::string& log_path) {
+  io::CarmenScanStream stream(log_path, o.max_scans);  // a missing file: FileError, exit 2
+  dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
+                               "imu_bridge");
+  const std::string topic = dds::topic_name(node.vehicle, dds::kImuTopic);
+  dds::Writer<msg::ImuPubSubType> writer(participant, topic,
+                                         node.profile(dds::kImuTopic, "sensor_writer"));
+  const double lead = process::orientation_lead(o.rate);
+  std::cerr << "imu_bridge: publishing " << topic << " from the odometry headings of " << log_path
+            << " at " << o.rate << "x the recorded rate, " << lead * 1e3
+            << " ms ahead of the scans (domain " << node.domain << ")\n";
+
+  if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "imu_bridge")) return 1;
+  const dds::Source source{"imu", node.vehicle};
+  process::QosWatch qos("imu_bridge");
+  const process::ReplayCounts counts = process::replay_carmen_scans(
+      o, stream, lead, "imu_bridge", [&](const io::TimedCarmenScan& scan) {
+        qos.output(writer);
+        return writer.write(dds::to_msg(orientation_of(scan), scan.index, source));
+      });
+  std::cerr << "imu_bridge: published " << counts.published << " odometry headings of " << log_path
+            << ", " << stream.malformed_lines() << " malformed lines skipped, " << counts.late
+            << " published late (> 0.25 s)" << (process::stop_requested() ? " (stopped)" : "")
+            << "\n";
+  process::give_readers_the_last_samples();
+  return qos.exit_code();
+}
+
+int publish(const process::NodeOptions& node, const process::SimSourceOptions& o) {
+  if (const std::optional<std::string> log_path = process::carmen_log_path(o)) {
+    return replay_headings(node, o, *log_path);
+  }
+  return publish_imu(node, o);
 }
 
 }  // namespace
 }  // namespace uavslam
 
 int main(int argc, char** argv) {
-  CLI::App app{"imu_bridge: publishes the `imu` topic (source sim: the flight simulator)"};
+  CLI::App app{
+      "imu_bridge: publishes the `imu` topic (source sim: the flight simulator; source "
+      "carmen:FILE: the odometry heading of each laser scan of a CARMEN log as its orientation)"};
   uavslam::process::NodeOptions node;
   uavslam::process::SimSourceOptions source;
   uavslam::process::add_node_options(app, node);
@@ -65,6 +123,6 @@ int main(int argc, char** argv) {
     if (const auto section = uavslam::process::apply_node_config(app, node, "imu_bridge")) {
       uavslam::process::apply_sim_source_config(app, *section, source);
     }
-    return uavslam::publish_imu(node, source);
+    return uavslam::publish(node, source);
   });
 }

@@ -1,15 +1,22 @@
 // lidar_driver: publishes the `scan` topic. Source `sim`: the flight simulator's LiDAR along a
 // scenario's flight, in real time or `--rate` times faster; `--groundtruth FILE` also writes the
 // simulator's true pose at every published scan (TUM), for evaluating the run afterwards.
+// Source `carmen:FILE`: every laser scan of a CARMEN log, in file order, at the recorded pace (or
+// `--rate` times faster), stamped on the log's timeline (io/CarmenTimeline.hpp).
 #include <chrono>
 #include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
 
 #include <msg/LaserScanPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
+#include "common/CarmenReplay.hpp"
 #include "common/IncompatibleQos.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/PacedStream.hpp"
+#include "common/ReaderGrace.hpp"
 #include "common/RunNode.hpp"
 #include "common/SimSourceOptions.hpp"
 #include "common/StopRequest.hpp"
@@ -17,6 +24,7 @@
 #include "dds/Participant.hpp"
 #include "dds/Topics.hpp"
 #include "dds/Writer.hpp"
+#include "io/CarmenScanStream.hpp"
 #include "io/ScenarioFile.hpp"
 #include "io/TumFile.hpp"
 #include "sim/Angles.hpp"
@@ -54,21 +62,72 @@ int publish_scans(const process::NodeOptions& node, const process::SimSourceOpti
   if (!groundtruth_path.empty()) io::write_tum(groundtruth_path, truth);
   std::cerr << "lidar_driver: published " << counts.published << " scans, " << counts.missed
             << " overdue and skipped" << (process::stop_requested() ? " (stopped)" : "") << "\n";
+  process::give_readers_the_last_samples();
   return qos.exit_code();
+}
+
+// The scan of a CARMEN log as published: sensor_msgs/LaserScan's beam layout is the log's.
+msg::LaserScan to_msg(const io::TimedCarmenScan& timed, const dds::Source& source) {
+  const io::CarmenScan& carmen = timed.scan;
+  auto geometry = std::make_shared<const ScanGeometry>(io::to_scan_geometry(carmen));
+  Scan scan = io::to_core_scan(carmen, std::move(geometry), timed.index);
+  scan.stamp = timed.stamp;
+  return dds::to_msg(scan, carmen.start_angle, carmen.angle_increment, source);
+}
+
+int replay_scans(const process::NodeOptions& node, const process::SimSourceOptions& o,
+                 const std::string& log_path) {
+  io::CarmenScanStream stream(log_path, o.max_scans);  // a missing file: FileError, exit 2
+  dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
+                               "lidar_driver");
+  const std::string topic = dds::topic_name(node.vehicle, dds::kScanTopic);
+  dds::Writer<msg::LaserScanPubSubType> writer(participant, topic,
+                                               node.profile(dds::kScanTopic, "sensor_writer"));
+  std::cerr << "lidar_driver: publishing " << topic << " from " << log_path << " at " << o.rate
+            << "x the recorded rate (domain " << node.domain << ")\n";
+
+  if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
+  const dds::Source source{"laser", node.vehicle};
+  process::QosWatch qos("lidar_driver");
+  const process::ReplayCounts counts = process::replay_carmen_scans(
+      o, stream, 0.0, "lidar_driver", [&](const io::TimedCarmenScan& scan) {
+        qos.output(writer);
+        return writer.write(to_msg(scan, source));
+      });
+  std::cerr << "lidar_driver: published " << counts.published << " scans of " << log_path << ", "
+            << stream.malformed_lines() << " malformed lines skipped, " << counts.late
+            << " published late (> 0.25 s)" << (process::stop_requested() ? " (stopped)" : "")
+            << "\n";
+  process::give_readers_the_last_samples();
+  return qos.exit_code();
+}
+
+int publish(const process::NodeOptions& node, const process::SimSourceOptions& o,
+            const std::string& groundtruth_path) {
+  const std::optional<std::string> log_path = process::carmen_log_path(o);
+  if (!log_path) return publish_scans(node, o, groundtruth_path);
+  if (!groundtruth_path.empty()) {
+    std::cerr << "lidar_driver: --groundtruth needs --source sim (a log has no ground truth)\n";
+    return 2;
+  }
+  return replay_scans(node, o, *log_path);
 }
 
 }  // namespace
 }  // namespace uavslam
 
 int main(int argc, char** argv) {
-  CLI::App app{"lidar_driver: publishes the `scan` topic (source sim: the flight simulator)"};
+  CLI::App app{
+      "lidar_driver: publishes the `scan` topic (source sim: the flight simulator; source "
+      "carmen:FILE: the laser scans of a CARMEN log, replayed at the recorded pace)"};
   uavslam::process::NodeOptions node;
   uavslam::process::SimSourceOptions source;
   uavslam::process::add_node_options(app, node);
   uavslam::process::add_sim_source_options(app, source);
   std::string groundtruth;
   app.add_option("--groundtruth", groundtruth,
-                 "also write the simulator's true pose at each published scan to this TUM file");
+                 "sim: also write the simulator's true pose at each published scan to this TUM "
+                 "file");
   if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("lidar_driver", [&] {
@@ -78,6 +137,6 @@ int main(int argc, char** argv) {
         groundtruth = section->get_string_or("groundtruth", groundtruth);
       }
     }
-    return uavslam::publish_scans(node, source, groundtruth);
+    return uavslam::publish(node, source, groundtruth);
   });
 }

@@ -76,10 +76,11 @@ class RecorderNode {
     for (const std::string& base : o.topics) {
       const std::string topic = dds::topic_name(node.vehicle, base);
       if (base == dds::kScanTopic) {
-        scans_ = subscribe<msg::LaserScanPubSubType>(topic, node.profile(base, "sensor_reader"));
+        scans_ = subscribe<msg::LaserScanPubSubType>(topic,
+                                                     node.profile(base, "sensor_recorder_reader"));
       }
       if (base == dds::kImuTopic) {
-        imu_ = subscribe<msg::ImuPubSubType>(topic, node.profile(base, "sensor_reader"));
+        imu_ = subscribe<msg::ImuPubSubType>(topic, node.profile(base, "sensor_recorder_reader"));
       }
     }
   }

@@ -1,6 +1,8 @@
 // slam_matcher: subscribes `scan` and `imu`, runs the SLAM pipeline (src/core) on the freshest
 // scan, publishes `pose`, `map_points` and `matcher_status`. The sensor (mount, floor mirror,
-// beam layout) comes from the `lidar` section of a scenario or sensor YAML.
+// beam layout) comes from the `lidar` section of a scenario or sensor YAML, or, with
+// --geometry-from-scan, from each scan message as a planar scanner at the body origin (replayed
+// 2D logs: lidar_driver --source carmen:FILE).
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -19,6 +21,7 @@
 #include "common/StopRequest.hpp"
 #include "core/SlamPipeline.hpp"
 #include "dds/Conversions.hpp"
+#include "dds/MessageScanGeometry.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Reader.hpp"
 #include "dds/Topics.hpp"
@@ -35,6 +38,7 @@ struct MatcherOptions {
   std::string sensor = "config/scenarios/demo.yaml";
   std::string slam_config;
   std::vector<double> initial_position;  // empty: the scenario's first waypoint
+  bool geometry_from_scan = false;       // the beam layout of each scan message; no scenario
 };
 
 double wall_seconds() {
@@ -56,9 +60,10 @@ class MatcherNode {
  public:
   MatcherNode(const process::NodeOptions& node, const MatcherOptions& o)
       : vehicle_(node.vehicle),
-        scenario_(io::load_scenario(o.sensor)),
+        geometry_from_scan_(o.geometry_from_scan),
+        scenario_(o.geometry_from_scan ? sim::Scenario{} : io::load_scenario(o.sensor)),
         config_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
-        geometry_(sim::make_scan_geometry(scenario_.lidar)),
+        geometry_(o.geometry_from_scan ? nullptr : sim::make_scan_geometry(scenario_.lidar)),
         slam_(config_, initial_position(o)),
         participant_(node.domain, process::profiles_path(node), node.participant_profile,
                      "slam_matcher"),
@@ -81,7 +86,9 @@ class MatcherNode {
 
   int run() {
     std::cerr << "slam_matcher: matching " << dds::topic_name(vehicle_, dds::kScanTopic)
-              << " with the sensor of " << scenario_.name << "\n";
+              << (geometry_from_scan_ ? " with the beam layout of each scan"
+                                      : " with the sensor of " + scenario_.name)
+              << "\n";
     while (!process::stop_requested()) {
       check_qos();
       auto work =
@@ -105,12 +112,15 @@ class MatcherNode {
     if (o.initial_position.size() == 3) {
       return {o.initial_position[0], o.initial_position[1], o.initial_position[2]};
     }
+    if (scenario_.waypoints.empty()) return Vec3::Zero();
     return scenario_.waypoints.front().position;
   }
 
   void process(matcher::ScanQueue::Work& work) {
     for (const ImuSample& sample : work.imu) slam_.add_imu(sample);
-    const Scan scan = dds::from_msg(work.scan.message, geometry_);
+    const Scan scan = dds::from_msg(
+        work.scan.message,
+        geometry_from_scan_ ? message_geometry_.for_message(work.scan.message) : geometry_);
     const auto start = Clock::now();
     const ScanReport report = slam_.process_scan(scan);
     const double processing_ms =
@@ -122,7 +132,7 @@ class MatcherNode {
     }
     if (report.map_updated) {
       const Vec3 origin =
-          report.pose.position + report.pose.orientation * geometry_->mount.translation();
+          report.pose.position + report.pose.orientation * scan.geometry->mount.translation();
       map_points_.write(
           dds::to_msg(report.added_points, origin, report.pose.stamp, keyframes_++, source));
     }
@@ -165,9 +175,11 @@ class MatcherNode {
   }
 
   std::string vehicle_;
+  bool geometry_from_scan_;
   sim::Scenario scenario_;
   SlamConfig config_;
   std::shared_ptr<const ScanGeometry> geometry_;
+  dds::MessageScanGeometry message_geometry_;
   SlamPipeline slam_;
   matcher::ScanQueue queue_;
   process::QosWatch qos_{"slam_matcher"};
@@ -184,7 +196,7 @@ class MatcherNode {
 };
 
 void apply_own_config(const CLI::App& app, const io::YamlReader& section, MatcherOptions& o) {
-  section.expect_keys_only({"sensor", "slam_config", "initial_position"});
+  section.expect_keys_only({"sensor", "slam_config", "initial_position", "geometry_from_scan"});
   if (process::unset(app, "--sensor")) o.sensor = section.get_string_or("sensor", o.sensor);
   if (process::unset(app, "--slam-config")) {
     o.slam_config = section.get_string_or("slam_config", o.slam_config);
@@ -192,6 +204,9 @@ void apply_own_config(const CLI::App& app, const io::YamlReader& section, Matche
   if (process::unset(app, "--initial-position") && section.has("initial_position")) {
     const Vec3 p = section.get_vec3("initial_position");
     o.initial_position = {p.x(), p.y(), p.z()};
+  }
+  if (process::unset(app, "--geometry-from-scan")) {
+    o.geometry_from_scan = section.get_bool_or("geometry_from_scan", o.geometry_from_scan);
   }
 }
 
@@ -211,9 +226,14 @@ int main(int argc, char** argv) {
   app.add_option("--slam-config", options.slam_config,
                  "SLAM parameters YAML (default: the built-in defaults, as config/slam.yaml)");
   app.add_option("--initial-position", options.initial_position,
-                 "x,y,z of the body at the first scan (default: the scenario's first waypoint)")
+                 "x,y,z of the body at the first scan (default: the scenario's first waypoint; "
+                 "0,0,0 with --geometry-from-scan)")
       ->delimiter(',')
       ->expected(3);
+  app.add_flag("--geometry-from-scan", options.geometry_from_scan,
+               "take the beam layout from each scan message (angle_min, angle_increment, "
+               "range_min/max) as a planar scanner at the body origin, instead of --sensor: for "
+               "replayed 2D logs (lidar_driver --source carmen:FILE)");
   if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("slam_matcher", [&] {

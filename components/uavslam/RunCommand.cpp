@@ -1,7 +1,8 @@
-// uavslam run: the SLAM pipeline over a recorded CARMEN log (the Freiburg 2D benchmark logs), in
-// the seed's mode: translation from the translation-only ICP, orientation from the robot's
-// odometry heading (these robots had no IMU), written as OUT/estimate.txt for `uavslam eval
-// --relations`, OUT/estimate.tum, OUT/map.ply and OUT/summary.json.
+// uavslam run: the SLAM pipeline over a recorded CARMEN log (the Freiburg 2D benchmark logs): the
+// robot's odometry heading is the orientation source (these robots had no IMU), its motion the
+// ICP's prior where the config asks for one, and the config's heading mode decides whether the
+// matcher corrects the heading; written as OUT/estimate.txt for `uavslam eval --relations`,
+// OUT/estimate.tum, OUT/map.ply and OUT/summary.json.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <random>
 #include <string>
 #include <variant>
 #include <vector>
@@ -25,6 +27,7 @@
 #include "core/SlamPipeline.hpp"
 #include "eval/Percentile.hpp"
 #include "io/CarmenLog.hpp"
+#include "io/CarmenTimeline.hpp"
 #include "io/FileError.hpp"
 #include "io/PlyFile.hpp"
 #include "io/TumFile.hpp"
@@ -38,27 +41,36 @@ struct RunOptions {
   std::string config;
   std::vector<std::string> overrides;
   bool quiet = false;
+  double heading_jitter = 0.0;  // rad
+  unsigned jitter_seed = 1;
 };
 
-// The pipeline's ImuBuffer needs strictly increasing stamps, and intel.clf's ipc_timestamps run
-// backwards; the pipeline runs on this clock, derived from file order, which follows the log's
-// stamps wherever they increase and creeps forward by kClockStep wherever they do not.
-class MonotonicClock {
+// A robustness probe: each scan's odometry heading moved by a tiny pseudo-random amount (uniform
+// in +-amplitude, reproducible from the seed). A matcher whose result changes a lot under 1e-6
+// rad is chaotic, and one run's figure says little about it (data README).
+class HeadingJitter {
  public:
-  double next(double stamp) {
-    last_ = std::isfinite(last_) ? std::max(last_ + kClockStep, stamp) : stamp;
-    return last_;
+  HeadingJitter(double amplitude, unsigned seed) : amplitude_(amplitude), random_(seed) {}
+  double next() {
+    return amplitude_ > 0.0
+               ? std::uniform_real_distribution<double>(-amplitude_, amplitude_)(random_)
+               : 0.0;
   }
 
  private:
-  static constexpr double kClockStep = 1e-4;  // s; far below the 0.1 s scan period
-  double last_ = -std::numeric_limits<double>::infinity();
+  double amplitude_;
+  std::mt19937 random_;
 };
 
+// The pipeline's ImuBuffer needs strictly increasing stamps, and intel.clf's ipc_timestamps run
+// backwards: the pipeline runs on the log's timeline, derived from file order.
+using MonotonicClock = io::CarmenTimeline;
+
+// A scan with a pose: matched, or (rejected with a motion prior) dead-reckoned by the odometry.
 struct AcceptedScan {
   double ipc_timestamp = 0.0;  // the scan's own stamp, which the relations refer to
   Pose pose;                   // stamped with the ipc_timestamp too
-  double theta = 0.0;          // the heading used (odometry)
+  double theta = 0.0;          // the heading: odometry's, plus the matcher's correction if any
 };
 
 struct LogRun {
@@ -67,6 +79,7 @@ struct LogRun {
   OutcomeCounts outcomes{};
   std::size_t scans_in = 0;
   std::size_t keyframes = 0;
+  std::size_t dead_reckoned = 0;  // rejected scans given the odometry's pose
   std::size_t malformed_lines = 0;
   std::vector<std::string> problems;
   Points map;
@@ -84,12 +97,19 @@ Eigen::Quaterniond yaw_rotation(double theta) {
   return Eigen::Quaterniond(Eigen::AngleAxisd(theta, Vec3::UnitZ()));
 }
 
-// One geometry per distinct beam layout (a log normally has one).
+double heading_of(const Eigen::Quaterniond& orientation) {
+  const Vec3 forward = orientation * Vec3::UnitX();
+  return std::atan2(forward.y(), forward.x());
+}
+
+// One geometry per distinct beam layout and laser mount (a log normally has one).
 class GeometryCache {
  public:
   std::shared_ptr<const ScanGeometry> for_scan(const io::CarmenScan& scan) {
+    const Eigen::Isometry3d mount = io::laser_mount(scan);
     if (!geometry_ || scan.ranges.size() != beams_ || scan.start_angle != start_ ||
-        scan.angle_increment != increment_ || scan.max_range != max_range_) {
+        scan.angle_increment != increment_ || scan.max_range != max_range_ ||
+        !mount.isApprox(geometry_->mount, 0.0)) {
       geometry_ = std::make_shared<const ScanGeometry>(io::to_scan_geometry(scan));
       beams_ = scan.ranges.size();
       start_ = scan.start_angle;
@@ -107,11 +127,10 @@ class GeometryCache {
   double max_range_ = 0.0;
 };
 
-// The ICP's motion prior (icp.motion_prior: odometry): how far the laser's odometry position moved
-// since the last scan the pipeline accepted, whose position is where the ICP would otherwise start
-// (a rejected scan leaves the pipeline's position where it was). The pipeline's frame is the
-// odometry's (it starts at the first laser pose and turns with the odometry heading), so the
-// odometry's change is the predicted motion as it is.
+// The ICP's motion prior (icp.motion_prior: odometry): how far the robot's odometry position moved
+// since the last scan that gave the pipeline a pose (matched, or dead-reckoned when the match
+// failed), which is where the ICP would otherwise start. It is given in the odometry's frame; the
+// pipeline turns it by its heading correction.
 class OdometryMotion {
  public:
   explicit OdometryMotion(bool enabled) : enabled_(enabled) {}
@@ -120,7 +139,7 @@ class OdometryMotion {
     if (!enabled_ || !has_last_) return Vec3::Zero();
     return {odometry.x - last_.x, odometry.y - last_.y, 0.0};
   }
-  void accepted(const io::CarmenPose2& odometry) {
+  void moved_to(const io::CarmenPose2& odometry) {
     last_ = odometry;
     has_last_ = true;
   }
@@ -139,14 +158,15 @@ std::vector<const io::CarmenScan*> scans_in_file_order(const io::CarmenLog& log)
   return scans;
 }
 
-// The laser's own odometry pose (FLASER: x y theta) is the scan's frame: its points are measured
-// there, the first scan seeds the map there and its theta is the orientation of the scan.
-void process_log(const io::CarmenLog& log, const SlamConfig& config, LogRun& run,
-                 const std::function<void(std::size_t, std::size_t)>& progress) {
+// The robot's odometry pose is the body: the first scan seeds the map there, its heading is the
+// orientation source, and the laser sits on it where the message says (GeometryCache). The
+// relations of the Freiburg benchmark refer to this pose.
+void process_log(const io::CarmenLog& log, const SlamConfig& config, HeadingJitter jitter,
+                 LogRun& run, const std::function<void(std::size_t, std::size_t)>& progress) {
   using Clock = std::chrono::steady_clock;
   const std::vector<const io::CarmenScan*> scans = scans_in_file_order(log);
   if (scans.empty()) return;
-  const io::CarmenPose2& start = scans.front()->laser_pose;
+  const io::CarmenPose2& start = scans.front()->robot_pose;
   SlamPipeline slam(config, Vec3(start.x, start.y, 0.0));
   MonotonicClock clock;
   GeometryCache geometries;
@@ -158,22 +178,23 @@ void process_log(const io::CarmenLog& log, const SlamConfig& config, LogRun& run
       break;
     }
     const io::CarmenScan& carmen = *scans[i];
-    const double theta = carmen.laser_pose.theta;
+    const double theta = carmen.robot_pose.theta + jitter.next();
     Scan scan = io::to_core_scan(carmen, geometries.for_scan(carmen), i);
     scan.stamp = clock.next(carmen.ipc_timestamp);
     const auto started = Clock::now();
     slam.add_imu({scan.stamp, yaw_rotation(theta), Vec3::Zero(), Vec3::Zero()});
-    const ScanReport report = slam.process_scan(scan, odometry_motion.predicted(carmen.laser_pose));
+    const ScanReport report = slam.process_scan(scan, odometry_motion.predicted(carmen.robot_pose));
     run.scan_seconds.push_back(std::chrono::duration<double>(Clock::now() - started).count());
     ++run.scans_in;
     run.first_stamp = std::min(run.first_stamp, carmen.ipc_timestamp);
     run.last_stamp = std::max(run.last_stamp, carmen.ipc_timestamp);
     run.keyframes += report.map_updated;
-    if (report.accepted()) {
-      odometry_motion.accepted(carmen.laser_pose);
+    run.dead_reckoned += report.dead_reckoned;
+    if (report.accepted() || report.dead_reckoned) {
+      odometry_motion.moved_to(carmen.robot_pose);
       Pose pose = report.pose;
       pose.stamp = carmen.ipc_timestamp;
-      run.accepted.push_back({carmen.ipc_timestamp, pose, theta});
+      run.accepted.push_back({carmen.ipc_timestamp, pose, heading_of(pose.orientation)});
     }
     if (progress && i % 200 == 0) progress(i, scans.size());
   }
@@ -204,7 +225,8 @@ nlohmann::json to_json(const LogRun& run, const std::string& log_path,
   j["scans"] = {{"in", run.scans_in},
                 {"accepted", run.accepted_count()},
                 {"rejected", run.scans_in - run.accepted_count()},
-                {"rejected_by_reason", rejected}};
+                {"rejected_by_reason", rejected},
+                {"dead_reckoned", run.dead_reckoned}};
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
   j["matcher_ms_per_scan"] = {{"mean", ms.mean}, {"p50", ms.p50}, {"p99", ms.p99}, {"max", ms.max}};
   j["read_seconds"] = run.read_seconds;
@@ -218,6 +240,10 @@ void print_summary(std::ostream& out, const LogRun& run, const std::string& log_
                    const eval::SampleStats& ms) {
   out << "uavslam run: " << log_path << (run.stopped_early ? " (stopped early)" : "") << "\n";
   print_scan_counts(out, run.scans_in, run.outcomes);
+  if (run.dead_reckoned > 0) {
+    out << "  dead-reckoned     " << run.dead_reckoned
+        << " rejected scans given the odometry's pose\n";
+  }
   out << "  malformed lines   " << run.malformed_lines << "\n";
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
@@ -255,9 +281,10 @@ int run_log(const RunOptions& o) {
   run.malformed_lines = log.malformed_lines;
   run.problems = log.problems;
   for (const std::string& problem : log.problems) std::cerr << "skipped " << problem << "\n";
-  process_log(log, config, run, [&](std::size_t done, std::size_t total) {
-    if (!o.quiet) report_progress("SLAM", done, total);
-  });
+  process_log(log, config, HeadingJitter(o.heading_jitter, o.jitter_seed), run,
+              [&](std::size_t done, std::size_t total) {
+                if (!o.quiet) report_progress("SLAM", done, total);
+              });
   std::vector<double> ms;
   ms.reserve(run.scan_seconds.size());
   for (double seconds : run.scan_seconds) ms.push_back(seconds * 1e3);
@@ -276,9 +303,10 @@ void add_run_command(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "run",
       "Run the SLAM pipeline over a CARMEN log (e.g. the Freiburg benchmark's intel.clf) in file "
-      "order, the orientation from the odometry heading, and write OUT/estimate.txt (ipc_timestamp "
-      "x y theta per accepted scan, for `uavslam eval --relations`), OUT/estimate.tum, OUT/map.ply "
-      "and OUT/summary.json");
+      "order, the odometry heading as the orientation source (corrected by the matcher if the "
+      "config's icp.heading says so), and write OUT/estimate.txt (ipc_timestamp x y theta per "
+      "scan with a pose, for `uavslam eval --relations`), OUT/estimate.tum, OUT/map.ply and "
+      "OUT/summary.json");
   cmd->add_option("--carmen", options->carmen, "CARMEN log (.clf)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -290,6 +318,12 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--set", options->overrides,
                   "override one SLAM parameter, e.g. --set icp.iterations=12 (repeatable)");
   cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
+  cmd->add_option("--heading-jitter", options->heading_jitter,
+                  "robustness probe: add a pseudo-random heading offset, uniform in +-RAD, to each "
+                  "scan's odometry heading (e.g. 1e-6; default 0)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--jitter-seed", options->jitter_seed,
+                  "seed of --heading-jitter (runs with the same seed are identical; default 1)");
   cmd->callback([options, &exit_code] { exit_code = run_log(*options); });
 }
 

@@ -1,5 +1,8 @@
 #include "core/ScanMatcher.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace uavslam {
 
 ScanPoints weigh_points(Points points, const std::vector<bool>& vertical, bool split_axes) {
@@ -30,6 +33,7 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
     map.find_nearest(scan.points, nearest);
   }
   const double max_squared = max_distance * max_distance;
+  const bool with_normals = !map.normals().empty();
   Correspondences pairs;
   pairs.scan.reserve(scan.points.size());
   pairs.map.reserve(scan.points.size());
@@ -42,6 +46,7 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
     pairs.scan.push_back(m);
     pairs.map.push_back(d);
     pairs.weights.push_back(w);
+    if (with_normals) pairs.normals.push_back(map.normals()[nearest[i].index]);
   }
   return pairs;
 }
@@ -63,7 +68,8 @@ Vec3 best_translation(const Correspondences& pairs) {
 double error_function(const Correspondences& pairs, const Vec3& t) {
   double sum = 0.0;
   for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
-    sum += pairs.weights[i].dot((pairs.scan[i] - (pairs.map[i] + t)).cwiseAbs2());
+    const Vec3 r = pairs.scan[i] - (pairs.map[i] + t);
+    sum += pairs.weights[i].dot(counted_residual(pairs, i, r).cwiseAbs2());
   }
   return sum / double(pairs.scan.size());
 }
@@ -74,8 +80,35 @@ void apply_transform(Points& points, const Vec3& correction) {
 
 ScanMatcher::ScanMatcher(const SlamConfig::Icp& config) : config_(config) {}
 
-MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan,
-                               const Vec3& initial) const {
+// The seed runs its fixed count; beyond it (icp.stop_step > 0) the ICP stops once a step moves
+// the scan less than stop_step (and turns it less than stop_step per metre of lever arm).
+bool ScanMatcher::converged(const PlanarCorrection& step) const {
+  return config_.stop_step > 0.0 && step.translation.norm() < config_.stop_step &&
+         std::abs(step.yaw) < config_.stop_step;
+}
+
+// Graduated: the kernel starts as wide as the gate, where the start may still be far off, and
+// halves each iteration down to icp.robust_scale, where only pairs on the same wall count fully.
+double ScanMatcher::robust_scale(int iteration) const {
+  if (config_.robust_scale <= 0.0) return 0.0;
+  const double wide = config_.max_correspondence_distance * std::pow(0.5, iteration);
+  return std::max(config_.robust_scale, wide);
+}
+
+PlanarCorrection ScanMatcher::step(const Correspondences& pairs, const Vec3& body,
+                                   bool estimate_yaw, const PlanarCorrection& so_far,
+                                   int iteration) const {
+  if (estimate_yaw || !pairs.normals.empty()) {
+    const CorrectionOptions options{estimate_yaw, config_.prior_weight, robust_scale(iteration)};
+    return best_correction(pairs, body, options, so_far);
+  }
+  PlanarCorrection seed;
+  seed.translation = -best_translation(pairs);
+  return seed;
+}
+
+MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, const Vec3& initial,
+                               bool estimate_yaw) const {
   MatchResult result;
   result.position = initial;
   ScanPoints moving = scan;
@@ -91,14 +124,25 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan,
   for (int k = 0; k < config_.iterations; ++k) {
     if (k > 0) pairs = find_nearest_points(map, moving, max_distance, nearest);
     if (pairs.empty()) return result;
-    const Vec3 t = best_translation(pairs);
-    apply_transform(moving.points, -t);
-    result.correction -= t;
+    const Vec3 body = initial + result.correction;
+    const PlanarCorrection c = step(pairs, body, estimate_yaw, {result.yaw, result.correction}, k);
+    if (c.yaw == 0.0) {
+      apply_transform(moving.points, c.translation);
+    } else {
+      apply_correction(moving.points, body, c);
+    }
+    result.correction += c.translation;
+    result.yaw += c.yaw;
     result.iterations = k + 1;
     if (result.correction.norm() > config_.max_translation) {
       result.outcome = ScanOutcome::TranslationTooLarge;
       return result;
     }
+    if (std::abs(result.yaw) > config_.max_rotation) {
+      result.outcome = ScanOutcome::RotationTooLarge;
+      return result;
+    }
+    if (converged(c)) break;
   }
   result.position = initial + result.correction;
 

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "core/Correspondences.hpp"
+#include "core/PlanarCorrection.hpp"
 #include "core/ScanOutcome.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
@@ -27,16 +29,9 @@ struct ScanPoints {
 // Uniform weights (the seed) or split ones (level beams x-y, vertical beams z).
 ScanPoints weigh_points(Points points, const std::vector<bool>& vertical, bool split_axes);
 
-// The scan points m_i and their nearest map points d_i, as weighted pairs.
-struct Correspondences {
-  Points scan;  // m_i
-  Points map;   // d_i
-  std::vector<Vec3> weights;
-  bool empty() const { return scan.empty(); }
-};
-
 // Step 1: pair each scan point with its nearest map point; pairs whose weighted distance exceeds
 // max_distance get omega = 0 and are left out (max_distance <= 0: keep all, as the seed does).
+// Where the map holds surface normals the pairs carry them (the point-to-line metric).
 // `nearest` carries the neighbours from one iteration to the next: empty, they are searched
 // afresh; filled for these points, the search starts from them.
 Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
@@ -48,7 +43,8 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
 // difference of the means c_m - c_d; 0 on an axis no pair informs. It minimises E(t).
 Vec3 best_translation(const Correspondences& pairs);
 
-// Eq. 5.18: E(t) = (1/N) sum_i sum_k w_ik (m_ik - (d_ik + t_k))^2, the mean squared distance.
+// Eq. 5.18: E(t) = (1/N) sum_i sum_k w_ik (m_ik - (d_ik + t_k))^2, the mean squared distance;
+// for a pair with a normal only the residual's component along it counts (point-to-line).
 double error_function(const Correspondences& pairs, const Vec3& t = Vec3::Zero());
 
 // Move the points by the correction (the scan onto the map: -t).
@@ -59,6 +55,7 @@ struct MatchResult {
   ScanOutcome outcome = ScanOutcome::NoCorrespondences;
   Vec3 position = Vec3::Zero();    // the body position the scan was aligned to
   Vec3 correction = Vec3::Zero();  // position - initial position
+  double yaw = 0.0;                // rad; the heading correction found (0 unless estimated)
   double error_before = 0.0;       // m^2
   double error_after = 0.0;        // m^2
   int iterations = 0;
@@ -72,9 +69,18 @@ class ScanMatcher {
 
   // scan: world-oriented points relative to the body origin; initial: the body position to start
   // from (the last position, as the seed, which has no motion model; or the caller's prediction).
-  MatchResult match(const WorldMap& map, const ScanPoints& scan, const Vec3& initial) const;
+  // estimate_yaw: also turn the scan about the body (PlanarCorrection); false and a map without
+  // normals is the seed's translation-only ICP exactly.
+  MatchResult match(const WorldMap& map, const ScanPoints& scan, const Vec3& initial,
+                    bool estimate_yaw = false) const;
 
  private:
+  bool converged(const PlanarCorrection& step) const;
+  // One ICP step from the pairs: the correction to apply to the moving scan.
+  PlanarCorrection step(const Correspondences& pairs, const Vec3& body, bool estimate_yaw,
+                        const PlanarCorrection& so_far, int iteration) const;
+  double robust_scale(int iteration) const;
+
   SlamConfig::Icp config_;
 };
 

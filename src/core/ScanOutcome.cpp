@@ -18,6 +18,8 @@ std::string to_string(ScanOutcome outcome) {
       return "no_correspondences";
     case ScanOutcome::TranslationTooLarge:
       return "translation_too_large";
+    case ScanOutcome::RotationTooLarge:
+      return "rotation_too_large";
     case ScanOutcome::ErrorTooLarge:
       return "error_too_large";
     case ScanOutcome::ErrorIncreased:

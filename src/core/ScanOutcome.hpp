@@ -14,10 +14,11 @@ enum class ScanOutcome {
   TooFewPoints,         // fewer valid points than the matcher needs
   NoCorrespondences,    // no scan point had a map point near enough
   TranslationTooLarge,  // accumulated correction beyond icp.max_translation (seed step 3)
+  RotationTooLarge,     // accumulated yaw correction beyond icp.max_rotation
   ErrorTooLarge,        // error after above icp.max_error_after (seed step 4)
   ErrorIncreased,       // error after above icp.max_error_ratio * error before (seed step 4)
 };
-constexpr std::size_t kScanOutcomeCount = 9;
+constexpr std::size_t kScanOutcomeCount = 10;
 
 std::string to_string(ScanOutcome outcome);
 

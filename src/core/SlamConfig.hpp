@@ -26,6 +26,29 @@ struct SlamConfig {
     // the last position plus the odometry's motion since the previous scan. The caller that owns
     // the odometry supplies the motion (SlamPipeline::process_scan); the core only adds it.
     std::string motion_prior = "none";
+    // Where the heading comes from (beyond the seed, which trusts the orientation source):
+    // "source" = the orientation source's yaw as it is (the seed) | "periodic_check" = every
+    // heading_check_every scans, and before each keyframe, the ICP also estimates yaw and
+    // corrects the heading when it disagrees by more than heading_check_tolerance (the seed's
+    // own suggestion, 5.6) |
+    // "every_scan" = the ICP estimates yaw with the translation in every scan.
+    std::string heading = "source";
+    int heading_check_every = 10;           // scans between periodic checks
+    double heading_check_tolerance = 0.01;  // rad; a smaller disagreement leaves the heading alone
+    double max_rotation = 0.35;  // rad; a larger yaw correction in one scan discards the scan
+    // The distance the ICP minimises: "point_to_point" (the seed, eq. 5.18) | "point_to_line" (to
+    // the wall through the map point, along its horizontal normal; no bias from the map's point
+    // spacing).
+    std::string metric = "point_to_point";
+    // How firmly the rotation-aware or point-to-line ICP holds its predicted start, as a fraction
+    // of the information the scan gives (PlanarCorrection): what the scan cannot see stays as
+    // predicted. The seed's translation-only step has no such term.
+    double prior_weight = 0.001;
+    // m; the Cauchy kernel's scale for those modes (PlanarCorrection; 0 = off, every pair in the
+    // gate counts fully).
+    double robust_scale = 0.0;
+    // m (and rad); stop the ICP early once a step is smaller (0 = never: the seed's fixed count).
+    double stop_step = 0.0;
   } icp;
 
   // The nearest-neighbour search: FLANN approximate kd-trees (real time) or exact (reference).
@@ -42,6 +65,12 @@ struct SlamConfig {
     double keyframe_height = 0.2;   // m of vertical motion since the last map update
     double keyframe_lateral = 0.5;  // m of horizontal motion since the last map update
     int subsample_every = 5;  // a keyframe adds every k-th valid point (seed: the matched m_i)
+    // rad of heading change since the last map update that also makes a keyframe (0: never, as
+    // the seed, whose heading is not its own). A robot turning on the spot sees new walls.
+    double keyframe_rotation = 0.0;
+    // m; a keyframe point this close to a map point is not added (0: keep all, as the seed): a
+    // place is mapped once, and the map is bounded by the size of the place, not the flight.
+    double min_point_spacing = 0.0;
   } map;
 
   // Orientation source: how far apart the IMU samples around a scan may be.

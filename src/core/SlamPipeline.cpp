@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/ScanProjection.hpp"
+#include "core/SurfaceNormals.hpp"
 
 namespace uavslam {
 namespace {
@@ -15,12 +15,26 @@ bool is_well_formed(const Scan& scan) {
          scan.ranges.size() == scan.geometry->directions.size() && !scan.ranges.empty();
 }
 
+Eigen::Quaterniond yaw_rotation(double yaw) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Vec3::UnitZ()));
+}
+
+// The heading of an orientation: where the body's x axis points in the horizontal plane.
+double heading_of(const Eigen::Quaterniond& orientation) {
+  const Vec3 forward = orientation * Vec3::UnitX();
+  return std::atan2(forward.y(), forward.x());
+}
+
+double angle_between(double a, double b) {
+  return std::abs(std::remainder(a - b, 2.0 * M_PI));
+}
+
 }  // namespace
 
 SlamPipeline::SlamPipeline(const SlamConfig& config, const Vec3& initial_position)
     : config_(config),
       imu_(config.imu.max_gap),
-      map_(make_nearest_neighbour_index(config.nearest_neighbour)),
+      map_(make_nearest_neighbour_index(config.nearest_neighbour), config.map.min_point_spacing),
       matcher_(config.icp) {
   pose_.position = initial_position;
 }
@@ -35,12 +49,13 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
   if (!is_well_formed(scan)) return finish(report);
 
   // Step 1: orientation at the scan's time, points into the world orientation.
-  const auto orientation = imu_.orientation_at(scan.stamp);
-  if (!orientation) {
+  const auto source_orientation = imu_.orientation_at(scan.stamp);
+  if (!source_orientation) {
     report.outcome = ScanOutcome::NoImu;
     return finish(report);
   }
-  ProjectedScan projected = project_scan(scan, *orientation);
+  Eigen::Quaterniond orientation = corrected(*source_orientation);
+  ProjectedScan projected = project_scan(scan, orientation);
   report.invalid_ranges = projected.invalid;
   // Step 2: every k-th point.
   const int k = config_.scan.subsample_every;
@@ -53,31 +68,78 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
     return finish(report);
   }
 
-  const Pose candidate{scan.stamp, pose_.position, *orientation};
   if (map_.empty()) {
     // The first scan seeds the map where the vehicle starts.
-    pose_ = candidate;
+    pose_ = {scan.stamp, pose_.position, orientation};
     report.outcome = ScanOutcome::MapInitialised;
     report.pose = pose_;
-    add_to_map(report, projected.points);
+    add_to_map(report, projected);
     return finish(report);
   }
 
-  // Steps 3-5: translation-only ICP from the last position (the seed) moved by the prediction.
-  // The matcher measures its correction, and so the seed's 1 m "distance moved" check, from this
-  // start: the check limits what the matcher changed, not the predicted motion itself.
-  const MatchResult match = matcher_.match(map_, points, pose_.position + predicted_motion);
+  // Steps 3-5: the ICP from the last position (the seed) moved by the prediction. The matcher
+  // measures its correction, and so the seed's 1 m "distance moved" check, from this start: the
+  // check limits what the matcher changed, not the predicted motion itself.
+  const Vec3 predicted = heading_correction_ == 0.0
+                             ? predicted_motion
+                             : yaw_rotation(heading_correction_) * predicted_motion;
+  const MatchResult match =
+      this->match(points, {scan.stamp, pose_.position + predicted, orientation});
   report.outcome = match.outcome;
   report.error_before = match.error_before;
   report.error_after = match.error_after;
   report.iterations = match.iterations;
-  if (match.outcome != ScanOutcome::Accepted) return finish(report);
+  if (match.outcome != ScanOutcome::Accepted) {
+    if (!predicted.isZero()) {
+      pose_ = {scan.stamp, pose_.position + predicted, orientation};
+      report.pose = pose_;
+      report.dead_reckoned = true;
+    }
+    return finish(report);
+  }
 
-  // Steps 6-7: report the new position (orientation from the IMU); a keyframe after enough motion.
-  pose_ = {scan.stamp, match.position, *orientation};
+  // The heading the scan agreed with becomes the correction for this and later scans.
+  if (match.yaw != 0.0) {
+    heading_correction_ = std::remainder(heading_correction_ + match.yaw, 2.0 * M_PI);
+    orientation = corrected(*source_orientation);
+    projected = project_scan(scan, orientation);
+  }
+
+  // Steps 6-7: report the new pose; a keyframe after enough motion.
+  pose_ = {scan.stamp, match.position, orientation};
   report.pose = pose_;
-  if (moved_enough_for_map_update(pose_.position)) add_to_map(report, projected.points);
+  if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
   return finish(report);
+}
+
+// The seed trusts the source (heading: source); otherwise the heading is estimated in every scan
+// or checked every heading_check_every scans and before every keyframe (a scan that joins the
+// map with the source's heading error would turn the map itself). A check that finds the heading
+// within tolerance leaves it alone and takes the seed's translation-only result.
+MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted) {
+  const std::string& heading = config_.icp.heading;
+  const Vec3& start = predicted.position;
+  if (heading == "every_scan") return matcher_.match(map_, points, start, true);
+  if (heading == "periodic_check" && heading_check_due(predicted)) {
+    scans_since_heading_check_ = 0;
+    MatchResult checked = matcher_.match(map_, points, start, true);
+    if (checked.outcome == ScanOutcome::Accepted &&
+        std::abs(checked.yaw) > config_.icp.heading_check_tolerance) {
+      return checked;
+    }
+  }
+  ++scans_since_heading_check_;
+  return matcher_.match(map_, points, start, false);
+}
+
+bool SlamPipeline::heading_check_due(const Pose& predicted) const {
+  return scans_since_heading_check_ + 1 >= config_.icp.heading_check_every ||
+         moved_enough_for_map_update(predicted);
+}
+
+Eigen::Quaterniond SlamPipeline::corrected(const Eigen::Quaterniond& source_orientation) const {
+  if (heading_correction_ == 0.0) return source_orientation;
+  return yaw_rotation(heading_correction_) * source_orientation;
 }
 
 ScanReport SlamPipeline::finish(ScanReport report) {
@@ -86,21 +148,31 @@ ScanReport SlamPipeline::finish(ScanReport report) {
   return report;
 }
 
-// Seed step 5: "+-0.2 m height and 0.5 m laterally" since the last map update.
-bool SlamPipeline::moved_enough_for_map_update(const Vec3& position) const {
-  const Vec3 moved = position - last_map_update_position_;
+// Seed step 5: "+-0.2 m height and 0.5 m laterally" since the last map update; beyond the seed,
+// also a turn of map.keyframe_rotation (when set).
+bool SlamPipeline::moved_enough_for_map_update(const Pose& pose) const {
+  const Vec3 moved = pose.position - last_map_update_position_;
+  const bool turned = config_.map.keyframe_rotation > 0.0 &&
+                      angle_between(heading_of(pose.orientation), last_map_update_heading_) >
+                          config_.map.keyframe_rotation;
   return std::abs(moved.z()) > config_.map.keyframe_height ||
-         moved.head<2>().norm() > config_.map.keyframe_lateral;
+         moved.head<2>().norm() > config_.map.keyframe_lateral || turned;
 }
 
-// Step 5: the aligned scan, thinned to every k-th point, into the map at the new position.
-void SlamPipeline::add_to_map(ScanReport& report, const Points& projected) {
-  Points aligned = keep_every_kth(projected, config_.map.subsample_every);
+// Step 5: the aligned scan, thinned to every k-th point, into the map at the new position; with
+// the point-to-line metric, each point's wall normal from its neighbours along the full scan.
+void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected) {
+  const int k = config_.map.subsample_every;
+  Points aligned = keep_every_kth(projected.points, k);
   apply_transform(aligned, pose_.position);
-  map_.add_points(aligned);
+  std::vector<Vec3> normals;
+  if (config_.icp.metric == "point_to_line") {
+    normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
+  }
+  report.added_points = map_.add_points(aligned, normals);
   last_map_update_position_ = pose_.position;
+  last_map_update_heading_ = heading_of(pose_.orientation);
   report.map_updated = true;
-  report.added_points = std::move(aligned);
 }
 
 }  // namespace uavslam

@@ -10,6 +10,7 @@
 #include "core/ImuBuffer.hpp"
 #include "core/ScanMatcher.hpp"
 #include "core/ScanOutcome.hpp"
+#include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
 
@@ -24,6 +25,9 @@ struct ScanReport {
   double error_after = 0.0;   // m^2
   int iterations = 0;
   bool map_updated = false;  // this scan was a keyframe
+  // The match failed and the pose is the predicted one (the last pose moved by the motion prior):
+  // the vehicle went where the other source says, not where it was.
+  bool dead_reckoned = false;
   std::size_t map_size = 0;
   Points added_points;  // what this scan added to the map (empty unless map_updated)
 
@@ -39,21 +43,28 @@ class SlamPipeline {
 
   void add_imu(const ImuSample& sample);
   // predicted_motion: the body's translation since the previous scan as another source predicts
-  // it (e.g. wheel odometry); the ICP starts from the last position plus it. Zero (the default) is
-  // the seed, which has no motion model.
+  // it (e.g. wheel odometry), in the frame of the orientation source; the ICP starts from the last
+  // position plus it (turned by the heading correction, if any). Zero (the default) is the seed,
+  // which has no motion model.
   ScanReport process_scan(const Scan& scan, const Vec3& predicted_motion = Vec3::Zero());
 
   const WorldMap& map() const { return map_; }
   const Pose& pose() const { return pose_; }
   const SlamConfig& config() const { return config_; }
+  // rad about the vertical: what the matcher has added to the orientation source's heading so
+  // far (always 0 with icp.heading: source, the seed).
+  double heading_correction() const { return heading_correction_; }
   // How many scans ended in each outcome, indexed by ScanOutcome.
   const std::array<std::size_t, kScanOutcomeCount>& outcome_counts() const { return counts_; }
   std::size_t rejected_imu_samples() const { return imu_.rejected(); }
 
  private:
   ScanReport finish(ScanReport report);
-  bool moved_enough_for_map_update(const Vec3& position) const;
-  void add_to_map(ScanReport& report, const Points& projected);
+  Eigen::Quaterniond corrected(const Eigen::Quaterniond& source_orientation) const;
+  bool heading_check_due(const Pose& predicted) const;
+  MatchResult match(const ScanPoints& points, const Pose& predicted);
+  bool moved_enough_for_map_update(const Pose& pose) const;
+  void add_to_map(ScanReport& report, const ProjectedScan& projected);
 
   SlamConfig config_;
   ImuBuffer imu_;
@@ -61,6 +72,9 @@ class SlamPipeline {
   ScanMatcher matcher_;
   Pose pose_;
   Vec3 last_map_update_position_ = Vec3::Zero();
+  double last_map_update_heading_ = 0.0;
+  double heading_correction_ = 0.0;
+  int scans_since_heading_check_ = 0;
   std::array<std::size_t, kScanOutcomeCount> counts_{};
 };
 

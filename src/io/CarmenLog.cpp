@@ -227,9 +227,27 @@ CarmenLog read_carmen_log(const std::string& path) {
   return log;
 }
 
+Eigen::Isometry3d laser_mount(const CarmenScan& scan) {
+  const CarmenPose2& robot = scan.robot_pose;
+  const CarmenPose2& laser = scan.laser_pose;
+  const double c = std::cos(robot.theta);
+  const double s = std::sin(robot.theta);
+  const double dx = laser.x - robot.x;
+  const double dy = laser.y - robot.y;
+  // The logs print 6 decimals: rounded, every scan of a log gets the same mount.
+  const auto round = [](double v) { return std::round(v * 1e3) / 1e3; };
+  Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();
+  mount.translation() = Vec3(round(c * dx + s * dy), round(-s * dx + c * dy), 0.0);
+  mount.linear() =
+      Eigen::AngleAxisd(round(std::remainder(laser.theta - robot.theta, 2.0 * M_PI)), Vec3::UnitZ())
+          .toRotationMatrix();
+  return mount;
+}
+
 ScanGeometry to_scan_geometry(const CarmenScan& scan) {
   ScanGeometry geometry = ScanGeometry::planar(scan.start_angle, scan.angle_increment,
                                                static_cast<int>(scan.ranges.size()));
+  geometry.mount = laser_mount(scan);
   // The core keeps ranges <= max_range; the largest float below max_range keeps exactly the
   // ranges that is_return() accepts.
   geometry.max_range = std::nextafter(static_cast<float>(scan.max_range), 0.0f);

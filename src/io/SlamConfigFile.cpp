@@ -50,6 +50,38 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.motion_prior = v.as_choice({"none", "odometry"});
        }},
+      {"icp", "heading",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.heading = v.as_choice({"source", "periodic_check", "every_scan"});
+       }},
+      {"icp", "heading_check_every",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.heading_check_every = v.as_int(NumberRange::at_least(1));
+       }},
+      {"icp", "heading_check_tolerance",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.heading_check_tolerance = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "max_rotation",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.max_rotation = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "metric",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.metric = v.as_choice({"point_to_point", "point_to_line"});
+       }},
+      {"icp", "prior_weight",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.prior_weight = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "robust_scale",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.robust_scale = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "stop_step",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.stop_step = v.as_double(NumberRange::non_negative());
+       }},
       {"nearest_neighbour", "index",
        [](SlamConfig& c, const YamlReader& v) {
          c.nearest_neighbour.index = v.as_choice({"flann", "exact", "brute"});
@@ -73,6 +105,14 @@ const std::vector<Parameter>& parameters() {
       {"map", "keyframe_lateral",
        [](SlamConfig& c, const YamlReader& v) {
          c.map.keyframe_lateral = v.as_double(NumberRange::non_negative());
+       }},
+      {"map", "keyframe_rotation",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.map.keyframe_rotation = v.as_double(NumberRange::non_negative());
+       }},
+      {"map", "min_point_spacing",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.map.min_point_spacing = v.as_double(NumberRange::non_negative());
        }},
       {"imu", "max_gap",
        [](SlamConfig& c, const YamlReader& v) {

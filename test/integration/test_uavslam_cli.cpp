@@ -275,8 +275,10 @@ TEST_F(UavslamCli, RunTracksACarmenLogInFileOrder) {
   EXPECT_FALSE(uavslam::io::read_ply((out / "map.ply").string()).empty());
 }
 
-// The smaller Freiburg log end to end, asserting only what does not depend on the accuracy: the
-// run completes, most scans are accepted and the estimate covers the relations' timestamps.
+// The smaller Freiburg log end to end with the shipped config: the run completes, most scans are
+// matched, every relation finds its poses, and estimating yaw in every scan beats the odometry it
+// starts from by far (odometry alone: 6.5 m / 0.059 m / 2.4 deg). The bounds leave room for the
+// spread the README reports under tiny perturbations (0.03-0.18 m over all relations).
 TEST_F(UavslamCli, RunCoversTheFr079Log) {
   const fs::path data = fs::path(UAVSLAM_SOURCE_DIR) / ".." / "shared" / "data" / "freiburg";
   if (!fs::exists(data / "fr079.clf")) GTEST_SKIP() << "no Freiburg data at " << data;
@@ -291,6 +293,8 @@ TEST_F(UavslamCli, RunCoversTheFr079Log) {
                               " --estimate " + (out / "estimate.txt").string());
   ASSERT_EQ(e.exit_code, 0) << e.output;
   const nlohmann::json figures = nlohmann::json::parse(e.output);
-  EXPECT_GT(figures["all"]["translation_m"]["count"].get<double>(),
-            0.9 * figures["all"]["relations"].get<double>());
+  EXPECT_EQ(figures["all"]["unmatched"].get<int>(), 0) << "a dead-reckoned pose for every scan";
+  EXPECT_LT(figures["all"]["translation_m"]["mean"].get<double>(), 0.5);
+  EXPECT_LT(figures["short_span"]["translation_m"]["mean"].get<double>(), 0.04);
+  EXPECT_LT(figures["short_span"]["rotation_deg"]["mean"].get<double>(), 1.0);
 }

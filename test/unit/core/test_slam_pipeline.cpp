@@ -128,5 +128,95 @@ TEST_F(PipelineInRoom, AMotionPriorStartsTheMatcherWhereTheVehicleWent) {
   EXPECT_EQ(with.pose.position.z(), start.z());
 }
 
+// The orientation source's heading goes wrong by 3 degrees after the first scan (a drifting gyro,
+// wheel odometry after a slip) while the vehicle moves along x in the room. The seed trusts it;
+// the rotation-aware modes measure the heading against the map and correct it.
+class HeadingBias : public PipelineInRoom {
+ protected:
+  static constexpr double kBias = 3.0 * M_PI / 180.0;
+
+  struct Run {
+    std::vector<double> corrections;  // the pipeline's heading correction after each scan
+    double last_position_error = 0.0;
+    double last_heading_error = 0.0;
+  };
+
+  Run fly(const SlamConfig& c, int scans) const {
+    SlamPipeline slam(c, start);
+    Run run;
+    for (int k = 0; k < scans; ++k) {
+      const double t = k * 0.1;
+      const Vec3 truth = start + Vec3(0.05 * k, 0.0, 0.0);
+      ImuSample imu = level_imu(t);
+      imu.orientation = Eigen::AngleAxisd(k == 0 ? 0.0 : kBias, Vec3::UnitZ());
+      slam.add_imu(imu);
+      const ScanReport r = slam.process_scan(room.scan_at(pose_at(truth, t), t),
+                                             k == 0 ? Vec3::Zero() : Vec3(0.05, 0, 0));
+      EXPECT_TRUE(r.accepted() || r.dead_reckoned) << "scan " << k << ": " << to_string(r.outcome);
+      run.corrections.push_back(slam.heading_correction());
+      run.last_position_error = (r.pose.position - truth).head<2>().norm();
+      const Vec3 forward = r.pose.orientation * Vec3::UnitX();
+      run.last_heading_error = std::abs(std::atan2(forward.y(), forward.x()));
+    }
+    return run;
+  }
+
+  SlamConfig rotation_aware(const std::string& heading, const std::string& metric) const {
+    SlamConfig c = config;
+    c.nearest_neighbour.index = "exact";
+    c.icp.motion_prior = "odometry";
+    c.icp.heading = heading;
+    c.icp.metric = metric;
+    c.icp.iterations = 20;
+    c.icp.heading_check_every = 5;
+    return c;
+  }
+};
+
+TEST_F(HeadingBias, TheSeedKeepsTheSourcesHeading) {
+  SlamConfig c = config;
+  c.nearest_neighbour.index = "exact";
+  const Run run = fly(c, 10);
+  for (const double correction : run.corrections) EXPECT_EQ(correction, 0.0);
+  EXPECT_NEAR(run.last_heading_error, kBias, 1e-9);
+}
+
+TEST_F(HeadingBias, EveryScanMeasuresTheHeadingAndUndoesTheBias) {
+  for (const std::string metric : {"point_to_point", "point_to_line"}) {
+    const Run run = fly(rotation_aware("every_scan", metric), 10);
+    EXPECT_NEAR(run.corrections[1], -kBias, 0.002) << metric << ": corrected at the first scan";
+    EXPECT_LT(run.last_heading_error, 0.002) << metric;
+    EXPECT_LT(run.last_position_error, 0.01) << metric;
+  }
+}
+
+TEST_F(HeadingBias, APeriodicCheckCorrectsTheHeadingOnlyWhenItIsDue) {
+  const Run run = fly(rotation_aware("periodic_check", "point_to_line"), 12);
+  // Scans 1-4 are matched translation-only with the biased heading; scan 5 is the first check.
+  for (int k = 1; k <= 4; ++k) EXPECT_EQ(run.corrections[std::size_t(k)], 0.0) << "scan " << k;
+  EXPECT_NEAR(run.corrections[5], -kBias, 0.002);
+  // The next check (scan 10) finds the heading within tolerance and leaves it as it was.
+  EXPECT_EQ(run.corrections[10], run.corrections[9]);
+  EXPECT_LT(run.last_heading_error, 0.002);
+  EXPECT_LT(run.last_position_error, 0.01);
+}
+
+// A failed match with a motion prior leaves the vehicle where the prediction says, not where it
+// was: a rejected scan is dead-reckoned.
+TEST_F(PipelineInRoom, ARejectedScanWithAPriorIsDeadReckoned) {
+  config.nearest_neighbour.index = "exact";
+  config.icp.max_error_after = 0.0;  // every match fails the error check
+  SlamPipeline slam(config, start);
+  slam.add_imu(level_imu(0.0));
+  slam.add_imu(level_imu(0.1));
+  ASSERT_TRUE(slam.process_scan(room.scan_at(pose_at(start, 0.0), 0.0)).accepted());
+  const ScanReport r =
+      slam.process_scan(room.scan_at(pose_at(start + Vec3(0.2, 0, 0), 0.1), 0.1), Vec3(0.2, 0, 0));
+  EXPECT_EQ(r.outcome, ScanOutcome::ErrorTooLarge);
+  EXPECT_TRUE(r.dead_reckoned);
+  EXPECT_TRUE(r.pose.position.isApprox(start + Vec3(0.2, 0, 0)));
+  EXPECT_TRUE(slam.pose().position.isApprox(start + Vec3(0.2, 0, 0)));
+}
+
 }  // namespace
 }  // namespace uavslam

@@ -231,6 +231,24 @@ TEST_F(CarmenLogTest, CoreScanHasThePlanarGeometryAndValidRanges) {
   EXPECT_EQ(core.geometry, geometry);
 }
 
+// FR079's laser sits 0.04 m behind the odometry centre (PARAM robot_frontlaser_offset -0.04): the
+// FLASER line's laser pose is the robot pose moved 0.04 m backwards along its heading.
+TEST_F(CarmenLogTest, TheLaserMountComesFromTheTwoPosesOfTheMessage) {
+  const double heading = 2.797853;
+  const double lx = -12.568330 - 0.04 * std::cos(heading);
+  const double ly = 10.087026 - 0.04 * std::sin(heading);
+  std::string line = "FLASER 180";
+  for (int i = 0; i < 180; ++i) line += " 2.0";
+  line += " " + std::to_string(lx) + " " + std::to_string(ly) + " 2.797853 -12.568330 10.087026 " +
+          "2.797853 7.5 nohost 0\n";
+  const CarmenScan scan = scan_at(read_carmen_log(write_log(line)), 0);
+  const Eigen::Isometry3d mount = laser_mount(scan);
+  EXPECT_DOUBLE_EQ(mount.translation().x(), -0.04);
+  EXPECT_DOUBLE_EQ(mount.translation().y(), 0.0);
+  EXPECT_TRUE(mount.linear().isApprox(Eigen::Matrix3d::Identity()));
+  EXPECT_TRUE(to_scan_geometry(scan).mount.isApprox(mount));
+}
+
 // The real Freiburg benchmark logs, when the shared data folder is present.
 std::string freiburg_log(const std::string& name) {
   return std::string(UAVSLAM_SOURCE_DIR) + "/../shared/data/freiburg/" + name;

@@ -260,6 +260,16 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.icp.max_error_after, defaults.icp.max_error_after);
   EXPECT_EQ(config.icp.max_error_ratio, defaults.icp.max_error_ratio);
   EXPECT_EQ(config.icp.max_correspondence_distance, defaults.icp.max_correspondence_distance);
+  EXPECT_EQ(config.icp.heading, defaults.icp.heading);
+  EXPECT_EQ(config.icp.heading_check_every, defaults.icp.heading_check_every);
+  EXPECT_EQ(config.icp.heading_check_tolerance, defaults.icp.heading_check_tolerance);
+  EXPECT_EQ(config.icp.max_rotation, defaults.icp.max_rotation);
+  EXPECT_EQ(config.icp.metric, defaults.icp.metric);
+  EXPECT_EQ(config.icp.prior_weight, defaults.icp.prior_weight);
+  EXPECT_EQ(config.icp.robust_scale, defaults.icp.robust_scale);
+  EXPECT_EQ(config.icp.stop_step, defaults.icp.stop_step);
+  EXPECT_EQ(config.map.keyframe_rotation, defaults.map.keyframe_rotation);
+  EXPECT_EQ(config.map.min_point_spacing, defaults.map.min_point_spacing);
   EXPECT_EQ(config.nearest_neighbour.index, defaults.nearest_neighbour.index);
   EXPECT_EQ(config.nearest_neighbour.flann_trees, defaults.nearest_neighbour.flann_trees);
   EXPECT_EQ(config.nearest_neighbour.flann_checks, defaults.nearest_neighbour.flann_checks);
@@ -287,8 +297,16 @@ icp:
   max_error_ratio: 0.9
   max_correspondence_distance: 1.5
   motion_prior: odometry
+  heading: periodic_check
+  heading_check_every: 7
+  heading_check_tolerance: 0.02
+  max_rotation: 0.2
+  metric: point_to_line
+  prior_weight: 0.01
+  robust_scale: 0.05
+  stop_step: 0.001
 nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
-map: {keyframe_height: 0.1, keyframe_lateral: 0.25}
+map: {keyframe_height: 0.1, keyframe_lateral: 0.25, keyframe_rotation: 0.3, min_point_spacing: 0.03}
 imu: {max_gap: 0.02}
 )");
   const SlamConfig c = load_slam_config(path);
@@ -299,6 +317,16 @@ imu: {max_gap: 0.02}
   EXPECT_EQ(c.icp.max_error_ratio, 0.9);
   EXPECT_EQ(c.icp.max_correspondence_distance, 1.5);
   EXPECT_EQ(c.icp.motion_prior, "odometry");
+  EXPECT_EQ(c.icp.heading, "periodic_check");
+  EXPECT_EQ(c.icp.heading_check_every, 7);
+  EXPECT_EQ(c.icp.heading_check_tolerance, 0.02);
+  EXPECT_EQ(c.icp.max_rotation, 0.2);
+  EXPECT_EQ(c.icp.metric, "point_to_line");
+  EXPECT_EQ(c.icp.prior_weight, 0.01);
+  EXPECT_EQ(c.icp.robust_scale, 0.05);
+  EXPECT_EQ(c.icp.stop_step, 0.001);
+  EXPECT_EQ(c.map.keyframe_rotation, 0.3);
+  EXPECT_EQ(c.map.min_point_spacing, 0.03);
   EXPECT_EQ(c.nearest_neighbour.index, "exact");
   EXPECT_EQ(c.nearest_neighbour.flann_trees, 8);
   EXPECT_EQ(c.nearest_neighbour.flann_checks, 128);

@@ -1,0 +1,65 @@
+// The core geometry of a scan message's own beam layout (replayed 2D logs).
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "dds/Conversions.hpp"
+#include "dds/MessageScanGeometry.hpp"
+
+namespace uavslam::dds {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+msg::LaserScan scan_message(std::size_t beams, float angle_min, float increment) {
+  msg::LaserScan m;
+  m.angle_min(angle_min);
+  m.angle_increment(increment);
+  m.range_min(0.1f);
+  m.range_max(81.8f);
+  m.ranges(std::vector<float>(beams, 1.0f));
+  return m;
+}
+
+TEST(MessageScanGeometry, APlanarScannerAtTheBodyOriginWithTheMessagesBeams) {
+  MessageScanGeometry geometries;
+  const auto g = geometries.for_message(
+      scan_message(180, static_cast<float>(-kPi / 2), static_cast<float>(kPi / 180)));
+  ASSERT_EQ(g->directions.size(), 180u);
+  EXPECT_NEAR(g->directions[0].x(), 0.0, 1e-6);
+  EXPECT_NEAR(g->directions[0].y(), -1.0, 1e-6);
+  EXPECT_NEAR(g->directions[90].x(), 1.0, 1e-6);  // beam 90 at 0 deg: forward
+  EXPECT_NEAR(std::atan2(g->directions[179].y(), g->directions[179].x()), 89.0 * kPi / 180, 1e-6);
+  EXPECT_FLOAT_EQ(static_cast<float>(g->min_range), 0.1f);
+  EXPECT_FLOAT_EQ(static_cast<float>(g->max_range), 81.8f);
+  EXPECT_TRUE(g->mount.isApprox(Eigen::Isometry3d::Identity()));
+}
+
+TEST(MessageScanGeometry, OneObjectPerLayout) {
+  MessageScanGeometry geometries;
+  const msg::LaserScan a = scan_message(180, -1.5f, 0.01f);
+  const auto first = geometries.for_message(a);
+  EXPECT_EQ(geometries.for_message(a), first);
+  const auto other = geometries.for_message(scan_message(361, -1.5f, 0.01f));
+  EXPECT_NE(other, first);
+  EXPECT_EQ(other->directions.size(), 361u);
+}
+
+TEST(MessageScanGeometry, TheScansOfALogRoundTrip) {
+  Scan scan;
+  auto geometry = std::make_shared<ScanGeometry>(ScanGeometry::planar(-kPi / 2, kPi / 360, 360));
+  geometry->max_range = 81.0;
+  scan.geometry = geometry;
+  scan.ranges = std::vector<float>(360, 2.0f);
+  const msg::LaserScan m = to_msg(scan, -kPi / 2, kPi / 360, Source{"laser", "uav1"});
+  MessageScanGeometry geometries;
+  const auto received = geometries.for_message(m);
+  ASSERT_EQ(received->directions.size(), 360u);
+  for (std::size_t i = 0; i < 360; i += 37) {
+    EXPECT_NEAR((received->directions[i] - geometry->directions[i]).norm(), 0.0, 1e-6) << i;
+  }
+  EXPECT_FLOAT_EQ(static_cast<float>(received->max_range), 81.0f);
+}
+
+}  // namespace
+}  // namespace uavslam::dds
