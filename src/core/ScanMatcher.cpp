@@ -81,30 +81,58 @@ void apply_transform(Points& points, const Vec3& correction) {
 ScanMatcher::ScanMatcher(const SlamConfig::Icp& config) : config_(config) {}
 
 // The seed runs its fixed count; beyond it (icp.stop_step > 0) the ICP stops once a step moves
-// the scan less than stop_step (and turns it less than stop_step per metre of lever arm).
+// the scan less than stop_step (and turns it less than stop_step rad).
 bool ScanMatcher::converged(const PlanarCorrection& step) const {
   return config_.stop_step > 0.0 && step.translation.norm() < config_.stop_step &&
          std::abs(step.yaw) < config_.stop_step;
 }
 
-// Graduated: the kernel starts as wide as the gate, where the start may still be far off, and
-// halves each iteration down to icp.robust_scale, where only pairs on the same wall count fully.
-double ScanMatcher::robust_scale(int iteration) const {
-  if (config_.robust_scale <= 0.0) return 0.0;
-  const double wide = config_.max_correspondence_distance * std::pow(0.5, iteration);
-  return std::max(config_.robust_scale, wide);
-}
-
 PlanarCorrection ScanMatcher::step(const Correspondences& pairs, const Vec3& body,
                                    bool estimate_yaw, const PlanarCorrection& so_far,
-                                   int iteration) const {
+                                   double robust_scale) const {
   if (estimate_yaw || !pairs.normals.empty()) {
-    const CorrectionOptions options{estimate_yaw, config_.prior_weight, robust_scale(iteration)};
+    const CorrectionOptions options{estimate_yaw, config_.prior_weight, robust_scale};
     return best_correction(pairs, body, options, so_far);
   }
   PlanarCorrection seed;
   seed.translation = -best_translation(pairs);
   return seed;
+}
+
+// Up to `count` iterations of find nearest points -> best correction -> apply, until a step is
+// below stop_step; false when the correction grows beyond the seed's limits (result.outcome says
+// which) or no pair is left.
+bool ScanMatcher::iterate(const WorldMap& map, const Vec3& initial, bool estimate_yaw,
+                          double robust_scale, int count, ScanPoints& moving,
+                          std::vector<Neighbour>& nearest, Correspondences& pairs,
+                          MatchResult& result) const {
+  for (int k = 0; k < count; ++k) {
+    if (result.iterations > 0) {
+      pairs = find_nearest_points(map, moving, config_.max_correspondence_distance, nearest);
+    }
+    if (pairs.empty()) return false;
+    const Vec3 body = initial + result.correction;
+    const PlanarCorrection c =
+        step(pairs, body, estimate_yaw, {result.yaw, result.correction}, robust_scale);
+    if (c.yaw == 0.0) {
+      apply_transform(moving.points, c.translation);
+    } else {
+      apply_correction(moving.points, body, c);
+    }
+    result.correction += c.translation;
+    result.yaw += c.yaw;
+    ++result.iterations;
+    if (result.correction.norm() > config_.max_translation) {
+      result.outcome = ScanOutcome::TranslationTooLarge;
+      return false;
+    }
+    if (std::abs(result.yaw) > config_.max_rotation) {
+      result.outcome = ScanOutcome::RotationTooLarge;
+      return false;
+    }
+    if (converged(c)) break;
+  }
+  return true;
 }
 
 MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, const Vec3& initial,
@@ -121,28 +149,18 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, cons
   if (pairs.empty()) return result;
   result.error_before = error_function(pairs);
 
-  for (int k = 0; k < config_.iterations; ++k) {
-    if (k > 0) pairs = find_nearest_points(map, moving, max_distance, nearest);
-    if (pairs.empty()) return result;
-    const Vec3 body = initial + result.correction;
-    const PlanarCorrection c = step(pairs, body, estimate_yaw, {result.yaw, result.correction}, k);
-    if (c.yaw == 0.0) {
-      apply_transform(moving.points, c.translation);
-    } else {
-      apply_correction(moving.points, body, c);
-    }
-    result.correction += c.translation;
-    result.yaw += c.yaw;
-    result.iterations = k + 1;
-    if (result.correction.norm() > config_.max_translation) {
-      result.outcome = ScanOutcome::TranslationTooLarge;
-      return result;
-    }
-    if (std::abs(result.yaw) > config_.max_rotation) {
-      result.outcome = ScanOutcome::RotationTooLarge;
-      return result;
-    }
-    if (converged(c)) break;
+  // The ICP (every pair in the gate counts fully), then, with a robust scale, the refinement:
+  // the converged scan settles on the pairs that agree with it (PlanarCorrection's Cauchy
+  // kernel). The kernel only after convergence: during it, the far pairs are the pull of the
+  // map's first visit that brings a returning vehicle back.
+  if (!iterate(map, initial, estimate_yaw, 0.0, config_.iterations, moving, nearest, pairs,
+               result)) {
+    return result;
+  }
+  if (config_.robust_scale > 0.0 &&
+      !iterate(map, initial, estimate_yaw, config_.robust_scale, config_.refine_iterations, moving,
+               nearest, pairs, result)) {
+    return result;
   }
   result.position = initial + result.correction;
 

@@ -78,8 +78,10 @@ class ScanMatcher {
   bool converged(const PlanarCorrection& step) const;
   // One ICP step from the pairs: the correction to apply to the moving scan.
   PlanarCorrection step(const Correspondences& pairs, const Vec3& body, bool estimate_yaw,
-                        const PlanarCorrection& so_far, int iteration) const;
-  double robust_scale(int iteration) const;
+                        const PlanarCorrection& so_far, double robust_scale) const;
+  bool iterate(const WorldMap& map, const Vec3& initial, bool estimate_yaw, double robust_scale,
+               int count, ScanPoints& moving, std::vector<Neighbour>& nearest,
+               Correspondences& pairs, MatchResult& result) const;
 
   SlamConfig::Icp config_;
 };

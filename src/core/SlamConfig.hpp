@@ -44,9 +44,11 @@ struct SlamConfig {
     // of the information the scan gives (PlanarCorrection): what the scan cannot see stays as
     // predicted. The seed's translation-only step has no such term.
     double prior_weight = 0.001;
-    // m; the Cauchy kernel's scale for those modes (PlanarCorrection; 0 = off, every pair in the
-    // gate counts fully).
+    // m; > 0: after the ICP converged, up to refine_iterations more iterations weigh each pair
+    // by the Cauchy kernel of this scale (PlanarCorrection), settling the scan on the pairs that
+    // agree with it (0 = no refinement).
     double robust_scale = 0.0;
+    int refine_iterations = 5;
     // m (and rad); stop the ICP early once a step is smaller (0 = never: the seed's fixed count).
     double stop_step = 0.0;
   } icp;

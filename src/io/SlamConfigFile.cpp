@@ -78,6 +78,10 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.robust_scale = v.as_double(NumberRange::non_negative());
        }},
+      {"icp", "refine_iterations",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.refine_iterations = v.as_int(NumberRange::at_least(1));
+       }},
       {"icp", "stop_step",
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.stop_step = v.as_double(NumberRange::non_negative());

@@ -267,6 +267,7 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.icp.metric, defaults.icp.metric);
   EXPECT_EQ(config.icp.prior_weight, defaults.icp.prior_weight);
   EXPECT_EQ(config.icp.robust_scale, defaults.icp.robust_scale);
+  EXPECT_EQ(config.icp.refine_iterations, defaults.icp.refine_iterations);
   EXPECT_EQ(config.icp.stop_step, defaults.icp.stop_step);
   EXPECT_EQ(config.map.keyframe_rotation, defaults.map.keyframe_rotation);
   EXPECT_EQ(config.map.min_point_spacing, defaults.map.min_point_spacing);
@@ -304,6 +305,7 @@ icp:
   metric: point_to_line
   prior_weight: 0.01
   robust_scale: 0.05
+  refine_iterations: 3
   stop_step: 0.001
 nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
 map: {keyframe_height: 0.1, keyframe_lateral: 0.25, keyframe_rotation: 0.3, min_point_spacing: 0.03}
@@ -324,6 +326,7 @@ imu: {max_gap: 0.02}
   EXPECT_EQ(c.icp.metric, "point_to_line");
   EXPECT_EQ(c.icp.prior_weight, 0.01);
   EXPECT_EQ(c.icp.robust_scale, 0.05);
+  EXPECT_EQ(c.icp.refine_iterations, 3);
   EXPECT_EQ(c.icp.stop_step, 0.001);
   EXPECT_EQ(c.map.keyframe_rotation, 0.3);
   EXPECT_EQ(c.map.min_point_spacing, 0.03);
