@@ -24,6 +24,7 @@
 #include "Commands.hpp"
 #include "RunSummary.hpp"
 #include "common/StopRequest.hpp"
+#include "core/Heading.hpp"
 #include "core/SlamPipeline.hpp"
 #include "eval/Percentile.hpp"
 #include "io/CarmenLog.hpp"
@@ -92,15 +93,6 @@ struct LogRun {
   double log_seconds() const { return scans_in > 0 ? last_stamp - first_stamp : 0.0; }
   std::size_t accepted_count() const { return cli::accepted_count(outcomes); }
 };
-
-Eigen::Quaterniond yaw_rotation(double theta) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(theta, Vec3::UnitZ()));
-}
-
-double heading_of(const Eigen::Quaterniond& orientation) {
-  const Vec3 forward = orientation * Vec3::UnitX();
-  return std::atan2(forward.y(), forward.x());
-}
 
 // One geometry per distinct beam layout and laser mount (a log normally has one).
 class GeometryCache {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/Heading.hpp"
 #include "core/SurfaceNormals.hpp"
 
 namespace uavslam {
@@ -13,16 +14,6 @@ constexpr std::size_t kMinPoints = 10;
 bool is_well_formed(const Scan& scan) {
   return scan.geometry && std::isfinite(scan.stamp) &&
          scan.ranges.size() == scan.geometry->directions.size() && !scan.ranges.empty();
-}
-
-Eigen::Quaterniond yaw_rotation(double yaw) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Vec3::UnitZ()));
-}
-
-// The heading of an orientation: where the body's x axis points in the horizontal plane.
-double heading_of(const Eigen::Quaterniond& orientation) {
-  const Vec3 forward = orientation * Vec3::UnitX();
-  return std::atan2(forward.y(), forward.x());
 }
 
 double angle_between(double a, double b) {

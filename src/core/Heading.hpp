@@ -1,0 +1,23 @@
+// The heading of a body: its rotation about the vertical. A yaw kept on top of the orientation
+// source (SlamPipeline's heading correction), the planar trajectories of 2D logs (x y theta), and
+// wheel odometry's theta all meet here.
+#pragma once
+
+#include <cmath>
+
+#include "core/Types.hpp"
+
+namespace uavslam {
+
+// The rotation by `yaw` rad about the vertical (world z).
+inline Eigen::Quaterniond yaw_rotation(double yaw) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Vec3::UnitZ()));
+}
+
+// Where the body's x axis points in the horizontal plane, rad in (-pi, pi].
+inline double heading_of(const Eigen::Quaterniond& orientation) {
+  const Vec3 forward = orientation * Vec3::UnitX();
+  return std::atan2(forward.y(), forward.x());
+}
+
+}  // namespace uavslam
