@@ -3,13 +3,17 @@
 // `--rate` times faster. Source `carmen:FILE`: the robots of CARMEN logs had no IMU, their wheel
 // odometry is their only rotation sensor (and it drifts): one orientation sample per laser scan,
 // at the scan's timeline stamp, the yaw of the laser pose's odometry heading, published a little
-// ahead of the lidar_driver's scan on the shared --start-at timeline (CarmenReplay.hpp).
+// ahead of the lidar_driver's scan on the shared --start-at timeline (CarmenReplay.hpp); and the
+// laser pose itself (x, y, heading) as `odom` at the same stamp, for a matcher whose SLAM config
+// takes the odometry as its motion prior. The laser's, not the robot's: over DDS the scan's frame
+// is the laser (the scan message carries no mount).
 #include <chrono>
 #include <iostream>
 #include <optional>
 #include <string>
 
 #include <msg/ImuPubSubTypes.h>
+#include <msg/PosePubSubTypes.h>
 #include <CLI/CLI.hpp>
 
 #include "common/CarmenReplay.hpp"
@@ -20,6 +24,7 @@
 #include "common/RunNode.hpp"
 #include "common/SimSourceOptions.hpp"
 #include "common/StopRequest.hpp"
+#include "core/Heading.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Topics.hpp"
@@ -63,36 +68,56 @@ int publish_imu(const process::NodeOptions& node, const process::SimSourceOption
 ImuSample orientation_of(const io::TimedCarmenScan& scan) {
   ImuSample sample;
   sample.stamp = scan.stamp;
-  sample.orientation =
-      Eigen::Quaterniond(Eigen::AngleAxisd(scan.scan.laser_pose.theta, Vec3::UnitZ()));
+  sample.orientation = yaw_rotation(scan.scan.laser_pose.theta);
   sample.angular_velocity = Vec3::Zero();
   sample.linear_acceleration = Vec3::Zero();
   return sample;
 }
 
-int replay_headings(const process::NodeOptions& node, const process::SimSourceOptions& o,
+// The laser's odometry pose, planar: the motion prior's source (`odom`).
+Pose odometry_of(const io::TimedCarmenScan& scan) {
+  Pose pose;
+  pose.stamp = scan.stamp;
+  pose.position = Vec3(scan.scan.laser_pose.x, scan.scan.laser_pose.y, 0.0);
+  pose.orientation = yaw_rotation(scan.scan.laser_pose.theta);
+  return pose;
+}
+
+int replay_odometry(const process::NodeOptions& node, const process::SimSourceOptions& o,
                     const std::string& log_path) {
   io::CarmenScanStream stream(log_path, o.max_scans);  // a missing file: FileError, exit 2
   dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
                                "imu_bridge");
   const std::string topic = dds::topic_name(node.vehicle, dds::kImuTopic);
+  // --wait-for-subscribers counts imu readers only: a matcher reads odom only when its config asks
+  // for the odometry prior. It creates its odom reader before its imu reader, and a participant
+  // announces its readers in that order, so its odom reader has matched by then too.
+  dds::Writer<msg::PoseWithCovarianceStampedPubSubType> odometry(
+      participant, dds::topic_name(node.vehicle, dds::kOdometryTopic),
+      node.profile(dds::kOdometryTopic, "sensor_writer"));
   dds::Writer<msg::ImuPubSubType> writer(participant, topic,
                                          node.profile(dds::kImuTopic, "sensor_writer"));
   const double lead = process::orientation_lead(o.rate);
-  std::cerr << "imu_bridge: publishing " << topic << " from the odometry headings of " << log_path
-            << " at " << o.rate << "x the recorded rate, " << lead * 1e3
-            << " ms ahead of the scans (domain " << node.domain << ")\n";
+  std::cerr << "imu_bridge: publishing " << topic << " and " << odometry.topic()
+            << " from the odometry of " << log_path << " at " << o.rate << "x the recorded rate, "
+            << lead * 1e3 << " ms ahead of the scans (domain " << node.domain << ")\n";
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "imu_bridge")) return 1;
-  const dds::Source source{"imu", node.vehicle};
+  const dds::Source imu_source{"imu", node.vehicle};
+  const dds::Source odometry_source{"odom", node.vehicle};
   process::QosWatch qos("imu_bridge");
+  std::uint64_t odometry_published = 0;
   const process::ReplayCounts counts = process::replay_carmen_scans(
       o, stream, lead, "imu_bridge", [&](const io::TimedCarmenScan& scan) {
         qos.output(writer);
-        return writer.write(dds::to_msg(orientation_of(scan), scan.index, source));
+        qos.output(odometry);
+        odometry_published += odometry.write(
+            dds::to_msg(odometry_of(scan), 1.0f, scan.index, scan.index, odometry_source));
+        return writer.write(dds::to_msg(orientation_of(scan), scan.index, imu_source));
       });
-  std::cerr << "imu_bridge: published " << counts.published << " odometry headings of " << log_path
-            << ", " << stream.malformed_lines() << " malformed lines skipped, " << counts.late
+  std::cerr << "imu_bridge: published " << counts.published << " odometry headings and "
+            << odometry_published << " odometry poses of " << log_path << ", "
+            << stream.malformed_lines() << " malformed lines skipped, " << counts.late
             << " published late (> 0.25 s)" << (process::stop_requested() ? " (stopped)" : "")
             << "\n";
   process::give_readers_the_last_samples();
@@ -101,7 +126,7 @@ int replay_headings(const process::NodeOptions& node, const process::SimSourceOp
 
 int publish(const process::NodeOptions& node, const process::SimSourceOptions& o) {
   if (const std::optional<std::string> log_path = process::carmen_log_path(o)) {
-    return replay_headings(node, o, *log_path);
+    return replay_odometry(node, o, *log_path);
   }
   return publish_imu(node, o);
 }
@@ -112,7 +137,8 @@ int publish(const process::NodeOptions& node, const process::SimSourceOptions& o
 int main(int argc, char** argv) {
   CLI::App app{
       "imu_bridge: publishes the `imu` topic (source sim: the flight simulator; source "
-      "carmen:FILE: the odometry heading of each laser scan of a CARMEN log as its orientation)"};
+      "carmen:FILE: the odometry heading of each laser scan of a CARMEN log as its orientation, "
+      "and the laser's odometry pose as the `odom` topic at the same stamp)"};
   uavslam::process::NodeOptions node;
   uavslam::process::SimSourceOptions source;
   uavslam::process::add_node_options(app, node);

@@ -4,7 +4,8 @@
 
 namespace uavslam::matcher {
 
-ScanQueue::ScanQueue(std::size_t max_imu) : max_imu_(max_imu) {}
+ScanQueue::ScanQueue(bool wait_for_odometry, std::size_t max_samples)
+    : wait_for_odometry_(wait_for_odometry), max_samples_(max_samples) {}
 
 void ScanQueue::push_scan(ReceivedScan scan) {
   {
@@ -21,10 +22,21 @@ void ScanQueue::push_imu(const ImuSample& sample) {
     std::lock_guard<std::mutex> lock(mutex_);
     imu_.push_back(sample);
     newest_imu_stamp_ = std::max(newest_imu_stamp_, sample.stamp);
-    if (imu_.size() > max_imu_) {
+    if (imu_.size() > max_samples_) {
       imu_.pop_front();
       ++imu_dropped_;
     }
+  }
+  changed_.notify_all();
+}
+
+void ScanQueue::push_odometry(const OdometrySample& sample) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++odometry_received_;
+    odometry_.push_back(sample);
+    newest_odometry_stamp_ = std::max(newest_odometry_stamp_, sample.stamp);
+    if (odometry_.size() > max_samples_) odometry_.pop_front();
   }
   changed_.notify_all();
 }
@@ -34,13 +46,17 @@ double ScanQueue::scan_stamp_locked() const {
 }
 
 std::optional<ScanQueue::Work> ScanQueue::wait_for_scan(std::chrono::milliseconds timeout,
-                                                        std::chrono::milliseconds imu_grace) {
+                                                        std::chrono::milliseconds grace) {
   std::unique_lock<std::mutex> lock(mutex_);
   if (!changed_.wait_for(lock, timeout, [&] { return scan_.has_value(); })) return std::nullopt;
-  changed_.wait_for(lock, imu_grace, [&] { return newest_imu_stamp_ >= scan_stamp_locked(); });
-  Work work{std::move(*scan_), std::move(imu_)};
+  changed_.wait_for(lock, grace, [&] {
+    const double stamp = scan_stamp_locked();
+    return newest_imu_stamp_ >= stamp && (!wait_for_odometry_ || newest_odometry_stamp_ >= stamp);
+  });
+  Work work{std::move(*scan_), std::move(imu_), std::move(odometry_)};
   scan_.reset();
   imu_.clear();
+  odometry_.clear();
   return work;
 }
 
@@ -52,6 +68,11 @@ std::uint64_t ScanQueue::scans_received() const {
 std::uint64_t ScanQueue::scans_skipped() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return scans_skipped_;
+}
+
+std::uint64_t ScanQueue::odometry_received() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return odometry_received_;
 }
 
 std::uint64_t ScanQueue::imu_dropped() const {

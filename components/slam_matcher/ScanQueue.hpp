@@ -1,6 +1,6 @@
-// Between the DDS threads and the matching thread: IMU samples queue up (the pipeline needs them
-// all, in order); scans do not. A new scan replaces one still waiting, which is counted as
-// skipped, so a matcher that falls behind works on the freshest scan and memory stays bounded.
+// Between the DDS threads and the matching thread: IMU and odometry samples queue up (the pipeline
+// needs them all, in order); scans do not. A new scan replaces one still waiting, which is counted
+// as skipped, so a matcher that falls behind works on the freshest scan and memory stays bounded.
 #pragma once
 
 #include <chrono>
@@ -12,6 +12,7 @@
 
 #include <msg/LaserScan.h>
 
+#include "core/OdometryBuffer.hpp"
 #include "core/Types.hpp"
 
 namespace uavslam::matcher {
@@ -23,25 +24,31 @@ struct ReceivedScan {
 
 class ScanQueue {
  public:
-  // max_imu: a bound on waiting IMU samples (the oldest go first) should the matcher stall.
-  explicit ScanQueue(std::size_t max_imu = 2000);
+  // max_samples: a bound on waiting IMU samples, and on waiting odometry samples (the oldest go
+  // first) should the matcher stall. wait_for_odometry: the matcher uses the odometry, so the
+  // grace of wait_for_scan waits for it too.
+  explicit ScanQueue(bool wait_for_odometry = false, std::size_t max_samples = 2000);
 
   void push_scan(ReceivedScan scan);
   void push_imu(const ImuSample& sample);
+  void push_odometry(const OdometrySample& sample);
 
-  // Waits up to `timeout` for a scan; returns it with every IMU sample received so far.
-  // `imu_grace`: after a scan arrives, how long to wait for an IMU sample stamped at or after it,
-  // so its orientation is interpolated rather than held.
+  // Waits up to `timeout` for a scan; returns it with every IMU and odometry sample received so
+  // far. `grace`: after a scan arrives, how long to wait for an IMU sample (and, when waited for,
+  // an odometry sample) stamped at or after it, so its orientation and odometry position are
+  // interpolated rather than missing.
   struct Work {
     ReceivedScan scan;
     std::deque<ImuSample> imu;
+    std::deque<OdometrySample> odometry;
   };
   std::optional<Work> wait_for_scan(std::chrono::milliseconds timeout,
-                                    std::chrono::milliseconds imu_grace);
+                                    std::chrono::milliseconds grace);
 
   std::uint64_t scans_received() const;
   std::uint64_t scans_skipped() const;
   std::uint64_t imu_dropped() const;
+  std::uint64_t odometry_received() const;
 
  private:
   double scan_stamp_locked() const;
@@ -50,11 +57,15 @@ class ScanQueue {
   std::condition_variable changed_;
   std::optional<ReceivedScan> scan_;
   std::deque<ImuSample> imu_;
-  std::size_t max_imu_;
+  std::deque<OdometrySample> odometry_;
+  bool wait_for_odometry_;
+  std::size_t max_samples_;
   double newest_imu_stamp_ = -1e300;
+  double newest_odometry_stamp_ = -1e300;
   std::uint64_t scans_received_ = 0;
   std::uint64_t scans_skipped_ = 0;
   std::uint64_t imu_dropped_ = 0;
+  std::uint64_t odometry_received_ = 0;
 };
 
 }  // namespace uavslam::matcher

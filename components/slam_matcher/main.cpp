@@ -2,10 +2,13 @@
 // scan, publishes `pose`, `map_points` and `matcher_status`. The sensor (mount, floor mirror,
 // beam layout) comes from the `lidar` section of a scenario or sensor YAML, or, with
 // --geometry-from-scan, from each scan message as a planar scanner at the body origin (replayed
-// 2D logs: lidar_driver --source carmen:FILE).
+// 2D logs: lidar_driver --source carmen:FILE). With `icp.motion_prior: odometry` in the SLAM
+// config it also subscribes `odom` (wheel odometry, imu_bridge --source carmen:FILE) and gives each
+// scan the odometry's motion since the last scan that got a pose as the ICP's start.
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <memory>
 
 #include <msg/ImuPubSubTypes.h>
 #include <msg/LaserScanPubSubTypes.h>
@@ -19,6 +22,7 @@
 #include "common/NodeOptions.hpp"
 #include "common/RunNode.hpp"
 #include "common/StopRequest.hpp"
+#include "core/OdometryPrior.hpp"
 #include "core/SlamPipeline.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/MessageScanGeometry.hpp"
@@ -56,6 +60,10 @@ float quality_of(const ScanReport& report, const SlamConfig& config) {
       std::clamp(1.0 - report.error_after / config.icp.max_error_after, 0.0, 1.0));
 }
 
+bool uses_odometry(const SlamConfig& config) {
+  return config.icp.motion_prior == "odometry";
+}
+
 class MatcherNode {
  public:
   MatcherNode(const process::NodeOptions& node, const MatcherOptions& o)
@@ -65,6 +73,9 @@ class MatcherNode {
         config_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
         geometry_(o.geometry_from_scan ? nullptr : sim::make_scan_geometry(scenario_.lidar)),
         slam_(config_, initial_position(o)),
+        queue_(uses_odometry(config_)),
+        // The odometry is as much "at the scan's time" as the orientation: the same tolerance.
+        odometry_prior_(config_.imu.max_gap),
         participant_(node.domain, process::profiles_path(node), node.participant_profile,
                      "slam_matcher"),
         pose_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic),
@@ -78,6 +89,7 @@ class MatcherNode {
                [this](const msg::LaserScan& m, const eprosima::fastdds::dds::SampleInfo& info) {
                  queue_.push_scan({m, to_seconds(info.source_timestamp)});
                }),
+        odometry_(make_odometry_reader(node)),
         imu_(participant_, dds::topic_name(vehicle_, dds::kImuTopic),
              node.profile(dds::kImuTopic, "sensor_reader"),
              [this](const msg::Imu& m, const eprosima::fastdds::dds::SampleInfo&) {
@@ -103,6 +115,7 @@ class MatcherNode {
   void check_qos() {
     qos_.input(scans_);
     qos_.input(imu_);
+    if (odometry_) qos_.input(*odometry_);
     qos_.output(pose_);
     qos_.output(map_points_);
     qos_.output(status_);
@@ -116,13 +129,32 @@ class MatcherNode {
     return scenario_.waypoints.front().position;
   }
 
+  // Created before the imu reader: an imu_bridge waiting for its imu subscribers then finds this
+  // one matched too (the same participant announces its readers in order).
+  std::unique_ptr<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>> make_odometry_reader(
+      const process::NodeOptions& node) {
+    if (!uses_odometry(config_)) return nullptr;
+    return std::make_unique<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>>(
+        participant_, dds::topic_name(vehicle_, dds::kOdometryTopic),
+        node.profile(dds::kOdometryTopic, "sensor_reader"),
+        [this](const msg::PoseWithCovarianceStamped& m, const eprosima::fastdds::dds::SampleInfo&) {
+          const Pose pose = dds::from_msg(m);
+          queue_.push_odometry({pose.stamp, pose.position});
+        });
+  }
+
   void process(matcher::ScanQueue::Work& work) {
     for (const ImuSample& sample : work.imu) slam_.add_imu(sample);
+    for (const OdometrySample& sample : work.odometry) odometry_prior_.add(sample);
     const Scan scan = dds::from_msg(
         work.scan.message,
         geometry_from_scan_ ? message_geometry_.for_message(work.scan.message) : geometry_);
     const auto start = Clock::now();
-    const ScanReport report = slam_.process_scan(scan);
+    const Vec3 predicted_motion = odometry_ ? odometry_prior_.motion_to(scan.stamp) : Vec3::Zero();
+    const ScanReport report = slam_.process_scan(scan, predicted_motion);
+    if (odometry_ && (report.accepted() || report.dead_reckoned)) {
+      odometry_prior_.scan_posed(scan.stamp);
+    }
     const double processing_ms =
         std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     const dds::Source source{"map", vehicle_};
@@ -172,6 +204,13 @@ class MatcherNode {
               << queue_.scans_skipped() << " skipped (a fresher one was waiting), " << poses_
               << " poses published, " << rejected_ << " rejected, map " << slam_.map().size()
               << " points from " << keyframes_ << " keyframes\n";
+    if (odometry_) {
+      std::cerr << "slam_matcher: odometry prior: " << queue_.odometry_received()
+                << " odometry samples received, " << odometry_prior_.rejected()
+                << " dropped (non-finite or out of order), " << odometry_prior_.scans_with_prior()
+                << " scans matched with the prior, " << odometry_prior_.scans_without_prior()
+                << " without (no odometry near the scan or the last posed scan)\n";
+    }
   }
 
   std::string vehicle_;
@@ -182,12 +221,14 @@ class MatcherNode {
   dds::MessageScanGeometry message_geometry_;
   SlamPipeline slam_;
   matcher::ScanQueue queue_;
+  OdometryPrior odometry_prior_;
   process::QosWatch qos_{"slam_matcher"};
   dds::Participant participant_;
   dds::Writer<msg::PoseWithCovarianceStampedPubSubType> pose_;
   dds::Writer<msg::MapPointsPubSubType> map_points_;
   dds::Writer<msg::MatcherStatusPubSubType> status_;
   dds::Reader<msg::LaserScanPubSubType> scans_;
+  std::unique_ptr<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>> odometry_;  // or none
   dds::Reader<msg::ImuPubSubType> imu_;
   std::uint64_t poses_ = 0;
   std::uint32_t keyframes_ = 0;
@@ -215,8 +256,8 @@ void apply_own_config(const CLI::App& app, const io::YamlReader& section, Matche
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "slam_matcher: subscribes scan and imu, runs the SLAM pipeline, publishes pose, "
-      "map_points and matcher_status"};
+      "slam_matcher: subscribes scan and imu (and odom with icp.motion_prior: odometry), runs "
+      "the SLAM pipeline, publishes pose, map_points and matcher_status"};
   uavslam::process::NodeOptions node;
   uavslam::MatcherOptions options;
   uavslam::process::add_node_options(app, node);
@@ -224,7 +265,10 @@ int main(int argc, char** argv) {
                  "YAML whose `lidar` section describes the scanner (a scenario file)")
       ->capture_default_str();
   app.add_option("--slam-config", options.slam_config,
-                 "SLAM parameters YAML (default: the built-in defaults, as config/slam.yaml)");
+                 "SLAM parameters YAML (default: the built-in defaults, as config/slam.yaml); "
+                 "with icp.motion_prior: odometry (config/slam_2d_logs.yaml) the matcher also "
+                 "subscribes odom and starts each ICP from the odometry's motion since the last "
+                 "scan that got a pose");
   app.add_option("--initial-position", options.initial_position,
                  "x,y,z of the body at the first scan (default: the scenario's first waypoint; "
                  "0,0,0 with --geometry-from-scan)")

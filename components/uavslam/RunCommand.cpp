@@ -25,6 +25,7 @@
 #include "RunSummary.hpp"
 #include "common/StopRequest.hpp"
 #include "core/Heading.hpp"
+#include "core/OdometryPrior.hpp"
 #include "core/SlamPipeline.hpp"
 #include "eval/Percentile.hpp"
 #include "io/CarmenLog.hpp"
@@ -119,29 +120,6 @@ class GeometryCache {
   double max_range_ = 0.0;
 };
 
-// The ICP's motion prior (icp.motion_prior: odometry): how far the robot's odometry position moved
-// since the last scan that gave the pipeline a pose (matched, or dead-reckoned when the match
-// failed), which is where the ICP would otherwise start. It is given in the odometry's frame; the
-// pipeline turns it by its heading correction.
-class OdometryMotion {
- public:
-  explicit OdometryMotion(bool enabled) : enabled_(enabled) {}
-
-  Vec3 predicted(const io::CarmenPose2& odometry) const {
-    if (!enabled_ || !has_last_) return Vec3::Zero();
-    return {odometry.x - last_.x, odometry.y - last_.y, 0.0};
-  }
-  void moved_to(const io::CarmenPose2& odometry) {
-    last_ = odometry;
-    has_last_ = true;
-  }
-
- private:
-  bool enabled_;
-  bool has_last_ = false;
-  io::CarmenPose2 last_;
-};
-
 std::vector<const io::CarmenScan*> scans_in_file_order(const io::CarmenLog& log) {
   std::vector<const io::CarmenScan*> scans;
   for (const io::CarmenMessage& message : log.messages) {
@@ -162,7 +140,11 @@ void process_log(const io::CarmenLog& log, const SlamConfig& config, HeadingJitt
   SlamPipeline slam(config, Vec3(start.x, start.y, 0.0));
   MonotonicClock clock;
   GeometryCache geometries;
-  OdometryMotion odometry_motion(config.icp.motion_prior == "odometry");
+  // The ICP's motion prior (icp.motion_prior: odometry): the robot's odometry motion since the
+  // last scan that got a pose, in the odometry's frame (the pipeline turns it by its heading
+  // correction); the same piece the matcher process feeds from the `odom` topic.
+  const bool use_odometry = config.icp.motion_prior == "odometry";
+  OdometryPrior odometry(config.imu.max_gap);
   const auto run_start = Clock::now();
   for (std::size_t i = 0; i < scans.size(); ++i) {
     if (process::stop_requested()) {
@@ -175,7 +157,10 @@ void process_log(const io::CarmenLog& log, const SlamConfig& config, HeadingJitt
     scan.stamp = clock.next(carmen.ipc_timestamp);
     const auto started = Clock::now();
     slam.add_imu({scan.stamp, yaw_rotation(theta), Vec3::Zero(), Vec3::Zero()});
-    const ScanReport report = slam.process_scan(scan, odometry_motion.predicted(carmen.robot_pose));
+    if (use_odometry)
+      odometry.add({scan.stamp, Vec3(carmen.robot_pose.x, carmen.robot_pose.y, 0.0)});
+    const Vec3 predicted = use_odometry ? odometry.motion_to(scan.stamp) : Vec3::Zero();
+    const ScanReport report = slam.process_scan(scan, predicted);
     run.scan_seconds.push_back(std::chrono::duration<double>(Clock::now() - started).count());
     ++run.scans_in;
     run.first_stamp = std::min(run.first_stamp, carmen.ipc_timestamp);
@@ -183,7 +168,7 @@ void process_log(const io::CarmenLog& log, const SlamConfig& config, HeadingJitt
     run.keyframes += report.map_updated;
     run.dead_reckoned += report.dead_reckoned;
     if (report.accepted() || report.dead_reckoned) {
-      odometry_motion.moved_to(carmen.robot_pose);
+      odometry.scan_posed(scan.stamp);
       Pose pose = report.pose;
       pose.stamp = carmen.ipc_timestamp;
       run.accepted.push_back({carmen.ipc_timestamp, pose, heading_of(pose.orientation)});

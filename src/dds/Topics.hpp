@@ -14,6 +14,10 @@ inline constexpr char kPoseTopic[] = "pose";                     // PoseWithCova
 inline constexpr char kMapPointsTopic[] = "map_points";          // MapPoints, map_points
 inline constexpr char kMapTopic[] = "map";                       // OccupancyMap, map
 inline constexpr char kMatcherStatusTopic[] = "matcher_status";  // MatcherStatus, status
+inline constexpr char kOdometryTopic[] = "odom";  // PoseWithCovarianceStamped, sensor
+// `odom`: wheel odometry, the pose of the scanner (position, heading) in the odometry's own frame
+// at the stamp of the scan it belongs to; the Pose type fits it (a stamped position + orientation,
+// a covariance slot), quality is 1 and scan_seq the scan's index in a replayed log.
 
 // "<vehicle_id>/<base>" when vehicle_id is non-empty, else base: topic_name("uav1", kScanTopic)
 // is "uav1/scan", topic_name("", kScanTopic) is "scan".

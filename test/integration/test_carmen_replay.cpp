@@ -1,7 +1,7 @@
 // Replaying CARMEN logs over DDS: lidar_driver and imu_bridge with --source carmen:FILE on one
 // --start-at timeline, into the slam_matcher (--geometry-from-scan) and the recorder, as separate
-// OS processes on their own domains (191, 192), the test as a ground-side subscriber of `pose`
-// and `matcher_status`.
+// OS processes on their own domains (191, 192; with the odometry prior over `odom`: 196, 197), the
+// test as a ground-side subscriber of `pose` and `matcher_status`.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -11,6 +11,7 @@
 #include <iostream>
 #include <limits>
 #include <mutex>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -35,8 +36,10 @@ namespace {
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 
-constexpr int kDomain = 191;       // the synthetic log's
-constexpr int kIntelDomain = 192;  // intel.clf's
+constexpr int kDomain = 191;               // the synthetic log's
+constexpr int kIntelDomain = 192;          // intel.clf's
+constexpr int kOdometryDomain = 196;       // the synthetic log's, with the odometry prior
+constexpr int kIntelOdometryDomain = 197;  // intel.clf's, with the odometry prior
 constexpr double kPi = 3.14159265358979323846;
 
 // A 12 x 8 m room with a pillar and a crate; the robot drives 5 m east while turning 0.3 rad.
@@ -123,6 +126,23 @@ std::string write_matcher_config(const std::string& file) {
                          "icp:\n  iterations: 30\n  max_correspondence_distance: 0.3\n"
                          "map:\n  subsample_every: 1\n";
   return file;
+}
+
+// The shipped config for 2D logs: the odometry as the motion prior, yaw in every scan,
+// point-to-line.
+const std::string kLogsConfig = std::string(UAVSLAM_SOURCE_DIR) + "/config/slam_2d_logs.yaml";
+
+// The matcher's summary line of its odometry prior: how many scans were matched with it, without.
+struct PriorCounts {
+  std::uint64_t received = 0, with_prior = 0, without_prior = 0;
+};
+std::optional<PriorCounts> prior_counts(const std::string& matcher_log) {
+  static const std::regex line(
+      R"(odometry prior: (\d+) odometry samples received, \d+ dropped[^,]*, (\d+) scans matched )"
+      R"(with the prior, (\d+) without)");
+  std::smatch m;
+  if (!std::regex_search(matcher_log, m, line)) return std::nullopt;
+  return PriorCounts{std::stoull(m[1]), std::stoull(m[2]), std::stoull(m[3])};
 }
 
 // The odometry pose of the scan stamped `stamp` (the log's stamps increase: timeline = log).
@@ -218,10 +238,12 @@ class CarmenReplay : public test::ProcessTest {
     return node(name, domain, flags);
   }
 
-  std::vector<std::string> matcher(int domain, const std::string& initial_position) {
+  // slam_config: empty for the seed's mode (write_matcher_config).
+  std::vector<std::string> matcher(int domain, const std::string& initial_position,
+                                   const std::string& slam_config = "") {
     return node("slam_matcher", domain,
                 {"--geometry-from-scan", "--initial-position", initial_position, "--slam-config",
-                 write_matcher_config(path("slam.yaml"))});
+                 slam_config.empty() ? write_matcher_config(path("slam.yaml")) : slam_config});
   }
 };
 
@@ -300,6 +322,85 @@ TEST_F(CarmenReplay, TheFirst300ScansOfIntelAreMatched) {
   EXPECT_EQ(counts.received, 300u) << slam.log();
   EXPECT_GE(counts.processed(), 150u) << slam.log();
   EXPECT_GE(counts.accepted, counts.processed() * 9 / 10) << slam.log();
+}
+
+TEST_F(CarmenReplay, TheOdometryOnTheWireIsTheMatchersMotionPrior) {
+  constexpr int kScans = 40;
+  const std::string log_file = path("room.clf");
+  const SyntheticLog log = write_synthetic_log(log_file, kScans);
+
+  MatcherListener listener(kOdometryDomain, "uav1");
+  process::ChildProcess slam(matcher(kOdometryDomain, "2,3,0", kLogsConfig),
+                             log_path("slam_matcher"));
+  ASSERT_TRUE(listener.matched()) << slam.log();
+
+  const std::string start_at = shared_start_time();
+  process::ChildProcess imu(sensor("imu_bridge", kOdometryDomain, log_file, "10", start_at, 1),
+                            log_path("imu_bridge"));
+  process::ChildProcess lidar(sensor("lidar_driver", kOdometryDomain, log_file, "10", start_at, 1),
+                              log_path("lidar_driver"));
+  ASSERT_TRUE(lidar.wait(60s)) << lidar.log();
+  EXPECT_EQ(lidar.exit_code(), 0) << lidar.log();
+  ASSERT_TRUE(imu.wait(60s)) << imu.log();
+  EXPECT_EQ(imu.exit_code(), 0) << imu.log();
+  EXPECT_TRUE(listener.wait_for_scan(kScans - 1, 10s)) << slam.log();
+  EXPECT_EQ(slam.stop(10s), 0) << slam.log();
+  std::cerr << imu.log() << slam.log();
+
+  EXPECT_THAT(imu.log(), HasSubstr("published 40 odometry headings and 40 odometry poses"));
+  const std::optional<PriorCounts> prior = prior_counts(slam.log());
+  ASSERT_TRUE(prior) << slam.log();
+  EXPECT_EQ(prior->received, 40u) << slam.log();
+  const MatcherCounts counts = listener.counts();
+  EXPECT_GE(counts.processed(), 30u) << slam.log();
+  EXPECT_EQ(prior->with_prior + prior->without_prior, counts.processed()) << slam.log();
+  // Only the first scan (it seeds the map; no scan before it got a pose) goes without.
+  EXPECT_EQ(prior->without_prior, 1u) << slam.log();
+  EXPECT_GE(counts.accepted, counts.processed() * 9 / 10) << slam.log();
+  const std::vector<Pose> poses = listener.poses();
+  ASSERT_FALSE(poses.empty()) << slam.log();
+  const Pose& last = poses.back();
+  const OdometryPose& odometry = odometry_at(log.path, last.stamp);
+  EXPECT_NEAR(last.stamp, log.path.back().stamp, 0.5) << "the last pose is of the last scans";
+  EXPECT_LT(std::hypot(last.position.x() - odometry.x, last.position.y() - odometry.y), 0.05)
+      << last.position.transpose() << " at " << last.stamp;
+}
+
+TEST_F(CarmenReplay, TheFirst1000ScansOfIntelAreMatchedWithTheOdometryPrior) {
+  const std::string intel = std::string(UAVSLAM_SOURCE_DIR) + "/../shared/data/freiburg/intel.clf";
+  if (!std::filesystem::exists(intel)) GTEST_SKIP() << intel << " is not there (../shared/data)";
+  MatcherListener listener(kIntelOdometryDomain, "uav1");
+  process::ChildProcess slam(matcher(kIntelOdometryDomain, "0,0,0", kLogsConfig),
+                             log_path("slam_matcher"));
+  ASSERT_TRUE(listener.matched()) << slam.log();
+
+  // ~200 s of the log in ~20 s: the bursts of its stamps (scans < 20 ms apart) stay within what
+  // the matcher (~0.5 ms a scan) takes on a loaded 2-core machine.
+  const std::string start_at = shared_start_time();
+  const std::vector<std::string> first_1000{"--max-scans", "1000"};
+  process::ChildProcess imu(
+      sensor("imu_bridge", kIntelOdometryDomain, intel, "10", start_at, 1, first_1000),
+      log_path("imu_bridge"));
+  process::ChildProcess lidar(
+      sensor("lidar_driver", kIntelOdometryDomain, intel, "10", start_at, 1, first_1000),
+      log_path("lidar_driver"));
+  ASSERT_TRUE(lidar.wait(180s)) << lidar.log();
+  EXPECT_EQ(lidar.exit_code(), 0) << lidar.log();
+  ASSERT_TRUE(imu.wait(180s)) << imu.log();
+  EXPECT_EQ(imu.exit_code(), 0) << imu.log();
+  EXPECT_TRUE(listener.wait_for_scan(999, 10s)) << slam.log();
+  EXPECT_EQ(slam.stop(10s), 0) << slam.log();
+  std::cerr << lidar.log() << imu.log() << slam.log();
+
+  EXPECT_THAT(lidar.log(), HasSubstr("published 1000 scans"));
+  const MatcherCounts counts = listener.counts();
+  EXPECT_EQ(counts.received, 1000u) << slam.log();
+  EXPECT_GE(counts.processed(), 500u) << slam.log();
+  EXPECT_GE(counts.accepted, counts.processed() * 9 / 10) << slam.log();
+  const std::optional<PriorCounts> prior = prior_counts(slam.log());
+  ASSERT_TRUE(prior) << slam.log();
+  EXPECT_EQ(prior->received, 1000u) << slam.log();
+  EXPECT_GE(prior->with_prior, counts.processed() * 9 / 10) << slam.log();
 }
 
 }  // namespace
