@@ -245,6 +245,35 @@ class CarmenReplay : public test::ProcessTest {
                 {"--geometry-from-scan", "--initial-position", initial_position, "--slam-config",
                  slam_config.empty() ? write_matcher_config(path("slam.yaml")) : slam_config});
   }
+
+  struct IntelRun {
+    MatcherCounts counts;
+    std::string lidar_log;
+    std::string matcher_log;
+  };
+
+  // The first `scans` scans of intel.clf at 10x through a matcher with slam_config, to the end
+  // (every sensor exits 0, the matcher saw the last scan and stops cleanly).
+  IntelRun replay_intel(const std::string& intel, int domain, int scans,
+                        std::chrono::seconds timeout, const std::string& slam_config = "") {
+    MatcherListener listener(domain, "uav1");
+    process::ChildProcess slam(matcher(domain, "0,0,0", slam_config), log_path("slam_matcher"));
+    EXPECT_TRUE(listener.matched()) << slam.log();
+    const std::string start_at = shared_start_time();
+    const std::vector<std::string> first{"--max-scans", std::to_string(scans)};
+    process::ChildProcess imu(sensor("imu_bridge", domain, intel, "10", start_at, 1, first),
+                              log_path("imu_bridge"));
+    process::ChildProcess lidar(sensor("lidar_driver", domain, intel, "10", start_at, 1, first),
+                                log_path("lidar_driver"));
+    EXPECT_TRUE(lidar.wait(timeout)) << lidar.log();
+    EXPECT_EQ(lidar.exit_code(), 0) << lidar.log();
+    EXPECT_TRUE(imu.wait(timeout)) << imu.log();
+    EXPECT_EQ(imu.exit_code(), 0) << imu.log();
+    EXPECT_TRUE(listener.wait_for_scan(std::uint64_t(scans - 1), 10s)) << slam.log();
+    EXPECT_EQ(slam.stop(10s), 0) << slam.log();
+    std::cerr << lidar.log() << imu.log() << slam.log();
+    return {listener.counts(), lidar.log(), slam.log()};
+  }
 };
 
 TEST_F(CarmenReplay, ASyntheticLogReachesTheMatcherAndTheRecorderScanForScan) {
@@ -298,30 +327,13 @@ TEST_F(CarmenReplay, ASyntheticLogReachesTheMatcherAndTheRecorderScanForScan) {
 TEST_F(CarmenReplay, TheFirst300ScansOfIntelAreMatched) {
   const std::string intel = std::string(UAVSLAM_SOURCE_DIR) + "/../shared/data/freiburg/intel.clf";
   if (!std::filesystem::exists(intel)) GTEST_SKIP() << intel << " is not there (../shared/data)";
-  MatcherListener listener(kIntelDomain, "uav1");
-  process::ChildProcess slam(matcher(kIntelDomain, "0,0,0"), log_path("slam_matcher"));
-  ASSERT_TRUE(listener.matched()) << slam.log();
+  const IntelRun run = replay_intel(intel, kIntelDomain, 300, 120s);
+  ASSERT_FALSE(HasFailure());
 
-  const std::string start_at = shared_start_time();
-  const std::vector<std::string> first_300{"--max-scans", "300"};
-  process::ChildProcess imu(sensor("imu_bridge", kIntelDomain, intel, "10", start_at, 1, first_300),
-                            log_path("imu_bridge"));
-  process::ChildProcess lidar(
-      sensor("lidar_driver", kIntelDomain, intel, "10", start_at, 1, first_300),
-      log_path("lidar_driver"));
-  ASSERT_TRUE(lidar.wait(120s)) << lidar.log();
-  EXPECT_EQ(lidar.exit_code(), 0) << lidar.log();
-  ASSERT_TRUE(imu.wait(120s)) << imu.log();
-  EXPECT_EQ(imu.exit_code(), 0) << imu.log();
-  EXPECT_TRUE(listener.wait_for_scan(299, 10s)) << slam.log();
-  EXPECT_EQ(slam.stop(10s), 0) << slam.log();
-  std::cerr << lidar.log() << imu.log() << slam.log();
-
-  EXPECT_THAT(lidar.log(), HasSubstr("published 300 scans"));
-  const MatcherCounts counts = listener.counts();
-  EXPECT_EQ(counts.received, 300u) << slam.log();
-  EXPECT_GE(counts.processed(), 150u) << slam.log();
-  EXPECT_GE(counts.accepted, counts.processed() * 9 / 10) << slam.log();
+  EXPECT_THAT(run.lidar_log, HasSubstr("published 300 scans"));
+  EXPECT_EQ(run.counts.received, 300u) << run.matcher_log;
+  EXPECT_GE(run.counts.processed(), 150u) << run.matcher_log;
+  EXPECT_GE(run.counts.accepted, run.counts.processed() * 9 / 10) << run.matcher_log;
 }
 
 TEST_F(CarmenReplay, TheOdometryOnTheWireIsTheMatchersMotionPrior) {
@@ -369,38 +381,19 @@ TEST_F(CarmenReplay, TheOdometryOnTheWireIsTheMatchersMotionPrior) {
 TEST_F(CarmenReplay, TheFirst1000ScansOfIntelAreMatchedWithTheOdometryPrior) {
   const std::string intel = std::string(UAVSLAM_SOURCE_DIR) + "/../shared/data/freiburg/intel.clf";
   if (!std::filesystem::exists(intel)) GTEST_SKIP() << intel << " is not there (../shared/data)";
-  MatcherListener listener(kIntelOdometryDomain, "uav1");
-  process::ChildProcess slam(matcher(kIntelOdometryDomain, "0,0,0", kLogsConfig),
-                             log_path("slam_matcher"));
-  ASSERT_TRUE(listener.matched()) << slam.log();
-
   // ~200 s of the log in ~20 s: the bursts of its stamps (scans < 20 ms apart) stay within what
   // the matcher (~0.5 ms a scan) takes on a loaded 2-core machine.
-  const std::string start_at = shared_start_time();
-  const std::vector<std::string> first_1000{"--max-scans", "1000"};
-  process::ChildProcess imu(
-      sensor("imu_bridge", kIntelOdometryDomain, intel, "10", start_at, 1, first_1000),
-      log_path("imu_bridge"));
-  process::ChildProcess lidar(
-      sensor("lidar_driver", kIntelOdometryDomain, intel, "10", start_at, 1, first_1000),
-      log_path("lidar_driver"));
-  ASSERT_TRUE(lidar.wait(180s)) << lidar.log();
-  EXPECT_EQ(lidar.exit_code(), 0) << lidar.log();
-  ASSERT_TRUE(imu.wait(180s)) << imu.log();
-  EXPECT_EQ(imu.exit_code(), 0) << imu.log();
-  EXPECT_TRUE(listener.wait_for_scan(999, 10s)) << slam.log();
-  EXPECT_EQ(slam.stop(10s), 0) << slam.log();
-  std::cerr << lidar.log() << imu.log() << slam.log();
+  const IntelRun run = replay_intel(intel, kIntelOdometryDomain, 1000, 180s, kLogsConfig);
+  ASSERT_FALSE(HasFailure());
 
-  EXPECT_THAT(lidar.log(), HasSubstr("published 1000 scans"));
-  const MatcherCounts counts = listener.counts();
-  EXPECT_EQ(counts.received, 1000u) << slam.log();
-  EXPECT_GE(counts.processed(), 500u) << slam.log();
-  EXPECT_GE(counts.accepted, counts.processed() * 9 / 10) << slam.log();
-  const std::optional<PriorCounts> prior = prior_counts(slam.log());
-  ASSERT_TRUE(prior) << slam.log();
-  EXPECT_EQ(prior->received, 1000u) << slam.log();
-  EXPECT_GE(prior->with_prior, counts.processed() * 9 / 10) << slam.log();
+  EXPECT_THAT(run.lidar_log, HasSubstr("published 1000 scans"));
+  EXPECT_EQ(run.counts.received, 1000u) << run.matcher_log;
+  EXPECT_GE(run.counts.processed(), 500u) << run.matcher_log;
+  EXPECT_GE(run.counts.accepted, run.counts.processed() * 9 / 10) << run.matcher_log;
+  const std::optional<PriorCounts> prior = prior_counts(run.matcher_log);
+  ASSERT_TRUE(prior) << run.matcher_log;
+  EXPECT_EQ(prior->received, 1000u) << run.matcher_log;
+  EXPECT_GE(prior->with_prior, run.counts.processed() * 9 / 10) << run.matcher_log;
 }
 
 }  // namespace
