@@ -11,8 +11,8 @@ using FlannTree = flann::Index<flann::L2_Simple<float>>;
 // A map whose points all share one height (a planar scanner on a ground robot) is indexed in x-y
 // only. FLANN's randomised trees split on a dimension drawn among those of the largest variance,
 // and with three dimensions that includes a z of zero variance: such splits send every point to
-// one side, the trees degenerate into chains, and a search walks them (measured on intel.clf: 165
-// s in 3D against a few seconds in 2D). The first point of another height turns the index 3D.
+// one side, the trees degenerate into chains, and a search walks them (while developing this, Intel
+// took about twice as long in 3D). The first point of another height turns the index 3D.
 struct FlannIndex::Impl {
   Impl(int trees, int checks) : trees(trees), search(checks) { search.cores = 1; }
 
