@@ -15,6 +15,8 @@ PACKAGES=(
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libpng-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the benchmark tables (make bench, make real-logs)
+  python3
 )
 
 missing=()
