@@ -9,6 +9,8 @@ PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
   # algorithm core
   libeigen3-dev libflann-dev liblz4-dev liboctomap-dev
+  # recording (MCAP CRC-32)
+  zlib1g-dev
   # DDS (Fast DDS 2.9, Fast CDR 1.0, fastddsgen 2.3, fastdds shm clean)
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   # config, command line, output

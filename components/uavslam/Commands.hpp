@@ -17,6 +17,7 @@ void add_sweep_command(CLI::App& app, int& exit_code);
 void add_launch_command(CLI::App& app, int& exit_code);
 void add_report_command(CLI::App& app, int& exit_code);
 void add_run_command(CLI::App& app, int& exit_code);
+void add_offline_command(CLI::App& app, int& exit_code);
 
 // --config FILE (optional; the seed's defaults otherwise) and then each --set key=value.
 SlamConfig load_config(const std::string& path, const std::vector<std::string>& overrides);

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   uavslam::cli::add_launch_command(app, exit_code);
   uavslam::cli::add_report_command(app, exit_code);
   uavslam::cli::add_run_command(app, exit_code);
+  uavslam::cli::add_offline_command(app, exit_code);
   uavslam::process::install_stop_handler();
   try {
     app.parse(argc, argv);

@@ -14,6 +14,8 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "io/OutputFile.hpp"
+
 namespace uavslam::io {
 namespace {
 
@@ -425,27 +427,42 @@ std::vector<unsigned char> binary_body(const Points& points,
   return bytes;
 }
 
-struct FileCloser {
-  void operator()(std::FILE* file) const { std::fclose(file); }
-};
-
 void write_binary_ply(const std::string& path, const Points& points,
                       const std::vector<float>* intensities) {
   const std::string header = binary_header(points.size(), intensities != nullptr);
   const std::vector<unsigned char> body = binary_body(points, intensities);
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "wb"));
-  if (!file) throw file_error(path, std::string("cannot write: ") + std::strerror(errno));
-  std::fwrite(header.data(), 1, header.size(), file.get());
-  if (!body.empty()) std::fwrite(body.data(), 1, body.size(), file.get());  // data() may be null
-  // A full disk shows up only when the buffer is flushed, so check the close too.
-  const bool write_failed = std::ferror(file.get()) != 0;
-  const int close_result = std::fclose(file.release());
-  if (write_failed || close_result != 0) {
-    throw file_error(path, std::string("cannot write: ") + std::strerror(errno));
+  OutputFile file(path);
+  file.write(header);
+  file.write(body.data(), body.size());
+  file.close();
+}
+
+std::vector<unsigned char> dense_body(const std::vector<DensePoint>& points) {
+  std::vector<unsigned char> bytes;
+  bytes.reserve(points.size() * (4 * 4 + 8));
+  for (const DensePoint& p : points) {
+    for (int axis = 0; axis < 3; ++axis) {
+      append_float_little_endian(bytes, static_cast<float>(p.position[axis]));
+    }
+    append_float_little_endian(bytes, p.intensity);
+    std::uint64_t bits;
+    std::memcpy(&bits, &p.time, sizeof bits);
+    for (int i = 0; i < 8; ++i) bytes.push_back(static_cast<unsigned char>(bits >> (8 * i)));
   }
+  return bytes;
 }
 
 }  // namespace
+
+void write_ply(const std::string& path, const std::vector<DensePoint>& points) {
+  std::string header = binary_header(points.size(), true);
+  header.insert(header.size() - std::string("end_header\n").size(), "property double time\n");
+  const std::vector<unsigned char> body = dense_body(points);
+  OutputFile file(path);
+  file.write(header);
+  file.write(body.data(), body.size());
+  file.close();
+}
 
 void write_ply(const std::string& path, const Points& points) {
   write_binary_ply(path, points, nullptr);

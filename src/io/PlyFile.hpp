@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/DenseCloud.hpp"
 #include "core/Types.hpp"
 #include "io/FileError.hpp"
 
@@ -18,6 +19,10 @@ void write_ply(const std::string& path, const Points& points);
 // unless there is exactly one intensity per point.
 void write_ply(const std::string& path, const Points& points,
                const std::vector<float>& intensities);
+
+// A dense cloud (the offline mapper's): float x y z intensity and double time (seconds) per
+// point, binary_little_endian.
+void write_ply(const std::string& path, const std::vector<DensePoint>& points);
 
 // Reads the x y z of every vertex of an ascii or binary_little_endian PLY file. x, y and z must be
 // float or double properties; other vertex properties and other elements are skipped. Throws

@@ -5,10 +5,12 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <string_view>
 
+#include "io/OutputFile.hpp"
 #include "io/TextFields.hpp"
 
 namespace uavslam::io {
@@ -70,6 +72,14 @@ std::vector<eval::PlanarStamped> read_planar_estimate(const std::string& path) {
     poses.push_back({v[0], v[1], v[2], v[3]});
   });
   return poses;
+}
+
+void write_planar_estimate(const std::string& path, const std::vector<eval::PlanarStamped>& poses) {
+  OutputFile file(path, "w");
+  for (const eval::PlanarStamped& p : poses) {
+    std::fprintf(file.stream(), "%.6f %.6f %.6f %.6f\n", p.t, p.x, p.y, p.theta);
+  }
+  file.close();
 }
 
 }  // namespace uavslam::io

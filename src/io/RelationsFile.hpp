@@ -21,4 +21,8 @@ std::vector<eval::Relation> read_relations(const std::string& path);
 // "<path>: cannot open: <reason>" on an unreadable file.
 std::vector<eval::PlanarStamped> read_planar_estimate(const std::string& path);
 
+// Writes "timestamp x y theta" per pose, 6 decimals (micrometres, microradians), in the given
+// order. Throws FileError naming the path and the system's reason when it cannot be written.
+void write_planar_estimate(const std::string& path, const std::vector<eval::PlanarStamped>& poses);
+
 }  // namespace uavslam::io

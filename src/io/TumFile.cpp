@@ -10,16 +10,13 @@
 #include <memory>
 #include <string_view>
 
+#include "io/OutputFile.hpp"
 #include "io/TextFields.hpp"
 
 namespace uavslam::io {
 namespace {
 
 constexpr const char* kFieldNames[8] = {"t", "x", "y", "z", "qx", "qy", "qz", "qw"};
-
-struct FileCloser {
-  void operator()(std::FILE* file) const { std::fclose(file); }
-};
 
 Pose parse_pose_line(const std::string& path, std::size_t line_number, std::string_view line) {
   const std::vector<std::string_view> fields = split_fields(without_comment(line));
@@ -55,21 +52,15 @@ bool is_blank(std::string_view text) {
 }  // namespace
 
 void write_tum(const std::string& path, const std::vector<Pose>& poses) {
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "w"));
-  if (!file) throw file_error(path, std::string("cannot write: ") + std::strerror(errno));
-  std::fprintf(file.get(), "# t x y z qx qy qz qw\n");
+  OutputFile file(path, "w");
+  std::fprintf(file.stream(), "# t x y z qx qy qz qw\n");
   for (const Pose& pose : poses) {
     const Vec3& p = pose.position;
     const Eigen::Quaterniond& q = pose.orientation;
-    std::fprintf(file.get(), "%.9f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", pose.stamp, p.x(), p.y(),
-                 p.z(), q.x(), q.y(), q.z(), q.w());
+    std::fprintf(file.stream(), "%.9f %.6f %.6f %.6f %.9f %.9f %.9f %.9f\n", pose.stamp, p.x(),
+                 p.y(), p.z(), q.x(), q.y(), q.z(), q.w());
   }
-  // A full disk shows up only when the buffer is flushed, so check the close too.
-  const bool write_failed = std::ferror(file.get()) != 0;
-  const int close_result = std::fclose(file.release());
-  if (write_failed || close_result != 0) {
-    throw file_error(path, std::string("cannot write: ") + std::strerror(errno));
-  }
+  file.close();
 }
 
 std::vector<Pose> read_tum(const std::string& path) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -17,6 +18,8 @@
 #include <nlohmann/json.hpp>
 
 #include "TempDirTest.hpp"
+#include "io/OctreeFile.hpp"
+#include "io/PcdFile.hpp"
 #include "io/PlyFile.hpp"
 #include "io/TumFile.hpp"
 
@@ -297,4 +300,73 @@ TEST_F(UavslamCli, RunCoversTheFr079Log) {
   EXPECT_LT(figures["all"]["translation_m"]["mean"].get<double>(), 0.5);
   EXPECT_LT(figures["short_span"]["translation_m"]["mean"].get<double>(), 0.04);
   EXPECT_LT(figures["short_span"]["rotation_deg"]["mean"].get<double>(), 1.0);
+}
+
+// The offline dense mapper on the short flight: every output is written and reads back, the dense
+// pass (every point, exact search) is at least as accurate as the real-time pass, and the cloud
+// lies on the simulated world's surfaces.
+TEST_F(UavslamCli, OfflineMapsTheShortFlightDenselyAndComparesItWithRealTime) {
+  const fs::path out = dir / "offline";
+  const CommandResult r =
+      run("offline --quiet --scenario " + source("config/scenarios/short.yaml") + " --config " +
+          source("config/slam.yaml") + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream json(out / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(json);
+  const nlohmann::json& offline = report.at("offline");
+  const nlohmann::json& realtime = report.at("realtime");
+  EXPECT_EQ(offline.at("scans").get<std::size_t>(), 801u);
+  EXPECT_EQ(realtime.at("scans").get<std::size_t>(), 801u);
+  const double offline_ate = offline.at("errors").at("ate_rmse_m").get<double>();
+  const double realtime_ate = realtime.at("errors").at("ate_rmse_m").get<double>();
+  EXPECT_LE(offline_ate, realtime_ate) << r.output;
+  const nlohmann::json& cloud = offline.at("cloud");
+  EXPECT_LT(cloud.at("distance_to_true_surfaces").at("mean_m").get<double>(), 0.03) << r.output;
+  EXPECT_GT(cloud.at("points_before_voxel_filter").get<std::size_t>(),
+            cloud.at("points").get<std::size_t>());
+  EXPECT_TRUE(report.contains("trajectory_difference"));
+
+  const std::vector<uavslam::DensePoint> pcd = uavslam::io::read_pcd((out / "cloud.pcd").string());
+  EXPECT_EQ(pcd.size(), cloud.at("points").get<std::size_t>());
+  EXPECT_EQ(uavslam::io::read_ply((out / "cloud.ply").string()).size(), pcd.size());
+  const auto tree = uavslam::io::read_bt((out / "map.bt").string());
+  EXPECT_EQ(uavslam::io::occupied_cell_centres(*tree).size(),
+            cloud.at("octomap_occupied_leaves").get<std::size_t>());
+  EXPECT_EQ(uavslam::io::read_tum((out / "estimate.tum").string()).size(),
+            offline.at("posed").get<std::size_t>());
+  EXPECT_FALSE(fs::exists(out / "estimate.txt")) << "estimate.txt is for CARMEN logs";
+}
+
+// On a CARMEN log whose config already matches every point with the exact index (the 2D logs'
+// config), the offline pass is the real-time pass: the same estimate.txt as `uavslam run`.
+TEST_F(UavslamCli, OfflineOnACarmenLogAgreesWithRun) {
+  std::string log;
+  for (int i = 0; i < 8; ++i) {
+    log += square_room_flaser(-1.0 + 0.1 * i, 0.5, 0.02 * i, 100.0 + 0.1 * i);
+  }
+  const std::string path = write("room.clf", log);
+  const std::string config = " --config " + source("config/slam_2d_logs.yaml");
+  const CommandResult offline =
+      run("offline --quiet --carmen " + path + config + " --out " + (dir / "offline").string());
+  ASSERT_EQ(offline.exit_code, 0) << offline.output;
+  const CommandResult online =
+      run("run --quiet --carmen " + path + config + " --out " + (dir / "run").string());
+  ASSERT_EQ(online.exit_code, 0) << online.output;
+  std::ifstream a(dir / "offline" / "estimate.txt"), b(dir / "run" / "estimate.txt");
+  const std::string offline_estimate{std::istreambuf_iterator<char>(a), {}};
+  const std::string run_estimate{std::istreambuf_iterator<char>(b), {}};
+  EXPECT_FALSE(offline_estimate.empty());
+  EXPECT_EQ(offline_estimate, run_estimate);
+  EXPECT_FALSE(uavslam::io::read_pcd((dir / "offline" / "cloud.pcd").string()).empty());
+}
+
+TEST_F(UavslamCli, OfflineNeedsExactlyOneInput) {
+  const CommandResult none = run("offline --out " + (dir / "o").string());
+  EXPECT_NE(none.exit_code, 0);
+  EXPECT_THAT(none.output, HasSubstr("--carmen"));
+  const CommandResult both =
+      run("offline --carmen " + source("config/slam.yaml") + " --scenario " +
+          source("config/scenarios/short.yaml") + " --out " + (dir / "o").string());
+  EXPECT_NE(both.exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir / "o"));
 }

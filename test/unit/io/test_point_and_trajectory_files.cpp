@@ -226,7 +226,7 @@ TEST_F(FileTest, PlyIntensityCountMustMatchThePoints) {
 
 TEST_F(FileTest, PlyEmptyCloudRoundTrips) {
   const std::string path = temp_path("empty.ply");
-  write_ply(path, {});
+  write_ply(path, Points{});
   EXPECT_THAT(bytes_of(path), HasSubstr("element vertex 0\n"));
   EXPECT_TRUE(read_ply(path).empty());
 }

@@ -1,0 +1,63 @@
+// One pass of the SLAM pipeline over a flight's sensor data (LogInput), as fast as it goes: the
+// real-time pass of the seed, or its offline variant, which also keeps every point of every posed
+// scan (DenseCloud) and ray-casts each keyframe's points into an OctoMap.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "LogInput.hpp"
+#include "ProgressBar.hpp"
+#include "RunSummary.hpp"
+#include "core/DenseCloud.hpp"
+#include "core/OccupancyOctree.hpp"
+#include "core/SlamConfig.hpp"
+
+namespace uavslam::cli {
+
+struct PassOptions {
+  SlamConfig config;
+  // The dense products; none in the real-time pass.
+  std::optional<double> cloud_voxel;         // m; <= 0 keeps every point
+  std::optional<OccupancyConfig> occupancy;  // the OctoMap of the keyframes' points
+};
+
+// A scan that got a pose: matched, or (rejected with a motion prior) dead-reckoned.
+struct PosedScan {
+  double output_stamp = 0.0;
+  Pose pose;  // stamped with output_stamp
+  std::optional<Pose> truth;
+  bool dead_reckoned = false;
+};
+
+struct PassResult {
+  std::vector<PosedScan> posed;
+  std::vector<double> scan_ms;  // pipeline time of every scan
+  OutcomeCounts outcomes{};
+  std::size_t scans_in = 0;
+  std::size_t keyframes = 0;
+  std::size_t dead_reckoned = 0;
+  std::size_t malformed = 0;
+  std::vector<std::string> problems;  // descriptions of the malformed records the input kept
+  Points map;                         // the matcher's world map
+  std::unique_ptr<DenseCloud> cloud;
+  std::unique_ptr<OccupancyOctree> occupancy;
+  double wall_seconds = 0.0;  // the whole pass: pipeline and dense products
+  double data_seconds = 0.0;
+  bool stopped_early = false;
+
+  double real_time_factor() const { return wall_seconds > 0 ? data_seconds / wall_seconds : 0; }
+  double pipeline_seconds() const;  // the matcher's share of wall_seconds
+  std::vector<Pose> estimate() const;
+  std::vector<Pose> ground_truth() const;  // where known, at the posed scans
+};
+
+// Runs until the input ends or a stop is requested (Ctrl-C: stopped_early). Problems the input
+// reports (malformed records) go to problems as they are met.
+PassResult run_pass(LogInput& input, const PassOptions& options, ProgressBar* progress,
+                    std::ostream* problems);
+
+}  // namespace uavslam::cli
