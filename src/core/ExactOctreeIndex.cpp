@@ -1,6 +1,7 @@
 #include "core/ExactOctreeIndex.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace uavslam {
@@ -102,14 +103,19 @@ void ExactOctreeIndex::split(std::int32_t node_index) {
 
 // Branch and bound: the octant holding the query first, then those across one, two and three of
 // the node's centre planes. Reaching an octant across a plane means crossing it, so the squared
-// distances to the crossed planes are a lower bound: octants with a bound beyond the best point
-// found so far are skipped, and the answer stays exact.
-void ExactOctreeIndex::search(std::int32_t node_index, const Vec3& q, Neighbour& best) const {
+// distances to the crossed planes are a lower bound: octants with a bound beyond the second-best
+// point found so far are skipped, and both answers stay exact.
+void ExactOctreeIndex::search(std::int32_t node_index, const Vec3& q, TwoNearest& best) const {
   const Node& node = nodes_[node_index];
   if (node.leaf) {
     for (std::uint32_t i : node.points) {
       const double d2 = (points_[i] - q).squaredNorm();
-      if (d2 < best.squared_distance) best = {i, d2};
+      if (d2 < best.first) {
+        best = {i, d2, best.index, best.first};
+      } else if (d2 < best.second && i != best.index) {
+        best.second_index = i;
+        best.second = d2;
+      }
     }
     return;
   }
@@ -122,29 +128,53 @@ void ExactOctreeIndex::search(std::int32_t node_index, const Vec3& q, Neighbour&
     const double bound = ((crossed & 1) ? plane_d2.x() : 0.0) +
                          ((crossed & 2) ? plane_d2.y() : 0.0) +
                          ((crossed & 4) ? plane_d2.z() : 0.0);
-    if (bound < best.squared_distance) search(child, q, best);
+    if (bound < best.second) search(child, q, best);
   }
+}
+
+Neighbour ExactOctreeIndex::searched(const Vec3& q, TwoNearest best) const {
+  search(root_, q, best);
+  return {best.index, best.first, q, best.second_index, std::sqrt(best.second), points_.size()};
 }
 
 void ExactOctreeIndex::find_nearest(const Points& queries, std::vector<Neighbour>& nearest) const {
   nearest.resize(queries.size());
   if (root_ == kNoChild) return;
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < queries.size(); ++i) {
-    Neighbour best{0, std::numeric_limits<double>::infinity()};
-    search(root_, queries[i], best);
-    nearest[i] = best;
+    nearest[i] = searched(queries[i], {0, kInfinity, 0, kInfinity});
   }
 }
 
+// A query that moved by delta since its last search is at least d2 - delta from every point but
+// its old neighbour (triangle inequality, d2: the second-nearest distance then): while the old
+// neighbour is nearer than that, it is still strictly the nearest, and no search is needed. Late
+// ICP iterations move the scan by fractions of a millimetre, so most queries take this path, and
+// the answer is the one a search would give.
 void ExactOctreeIndex::find_nearest_again(const Points& queries,
                                           std::vector<Neighbour>& nearest) const {
   if (root_ == kNoChild || nearest.size() != queries.size()) return find_nearest(queries, nearest);
+  constexpr double kMargin = 1e-9;  // m, far above rounding, far below any map spacing
   for (std::size_t i = 0; i < queries.size(); ++i) {
-    // The old neighbour is a real point, so its distance bounds the search and the answer stays
-    // exact; after a small move it is near the answer, so most of the tree is pruned at once.
-    Neighbour best{nearest[i].index, (points_[nearest[i].index] - queries[i]).squaredNorm()};
-    search(root_, queries[i], best);
-    nearest[i] = best;
+    Neighbour& n = nearest[i];
+    const double d1 = (points_[n.index] - queries[i]).squaredNorm();
+    const double delta = (queries[i] - n.searched_from).norm();
+    if (n.searched_size == points_.size() && std::sqrt(d1) + delta + kMargin < n.second_distance) {
+      n.squared_distance = d1;
+      continue;
+    }
+    // The old two nearest are real points, so their distances bound the search and the answers
+    // stay exact; after a small move they are near the answers, so most of the tree is pruned.
+    TwoNearest start{std::uint32_t(n.index), d1, std::uint32_t(n.second_index),
+                     std::numeric_limits<double>::infinity()};
+    if (n.searched_size > 0 && n.second_index != n.index) {
+      start.second = (points_[n.second_index] - queries[i]).squaredNorm();
+      if (start.second < start.first) {
+        std::swap(start.index, start.second_index);
+        std::swap(start.first, start.second);
+      }
+    }
+    n = searched(queries[i], start);
   }
 }
 

@@ -36,7 +36,14 @@ class ExactOctreeIndex final : public NearestNeighbourIndex {
   void split(std::int32_t node_index);
   int octant_of(const Node& node, const Vec3& p) const;
   std::int32_t make_child(std::int32_t node_index, int octant);
-  void search(std::int32_t node_index, const Vec3& q, Neighbour& best) const;
+  struct TwoNearest {
+    std::uint32_t index = 0;
+    double first = 0.0;  // squared distances
+    std::uint32_t second_index = 0;
+    double second = 0.0;
+  };
+  void search(std::int32_t node_index, const Vec3& q, TwoNearest& best) const;
+  Neighbour searched(const Vec3& q, TwoNearest best) const;
 
   std::size_t leaf_capacity_;
   Points points_;

@@ -16,6 +16,13 @@ namespace uavslam {
 struct Neighbour {
   std::size_t index = 0;          // into the points in the order they were added
   double squared_distance = 0.0;  // m^2
+  // Set by an index that can answer find_nearest_again without a search (the octree): where the
+  // query was when it last searched, the second-nearest point and its distance then (m), and
+  // the map's size then.
+  Vec3 searched_from = Vec3::Zero();
+  std::size_t second_index = 0;
+  double second_distance = 0.0;
+  std::size_t searched_size = 0;
 };
 
 class NearestNeighbourIndex {

@@ -62,6 +62,39 @@ TEST(ExactOctreeIndex, SearchingAgainFromOldNeighboursStaysExact) {
   }
 }
 
+// ICP-like: many small steps (most answered from the old neighbour without a search), some
+// large, and a map that grows between two calls; after each, the same answers as brute force.
+TEST(ExactOctreeIndex, RepeatedSmallMovesKeepTheExactNeighbours) {
+  const Points map = random_points(4000, 5.0, 7);
+  Points queries = random_points(400, 5.0, 8);
+  ExactOctreeIndex octree;
+  BruteForceIndex brute;
+  add_in_batches(octree, map, 216);
+  add_in_batches(brute, map, 216);
+  std::vector<Neighbour> warm;
+  octree.find_nearest(queries, warm);
+  std::mt19937_64 rng(9);
+  std::normal_distribution<double> step(0.0, 1.0);
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    const double size = iteration % 10 == 9 ? 0.3 : 0.002;  // every tenth step a large one
+    const Vec3 shift(step(rng) * size, step(rng) * size, step(rng) * size * 0.2);
+    for (Vec3& q : queries) q += shift;
+    if (iteration == 20) {
+      const Points more = random_points(200, 5.0, 10);
+      octree.add_points(more);
+      brute.add_points(more);
+    }
+    octree.find_nearest_again(queries, warm);
+    std::vector<Neighbour> truth;
+    brute.find_nearest(queries, truth);
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      ASSERT_EQ(warm[i].squared_distance, truth[i].squared_distance)
+          << "iteration " << iteration << ", query " << i;
+      ASSERT_EQ(warm[i].index, truth[i].index) << "iteration " << iteration << ", query " << i;
+    }
+  }
+}
+
 TEST(ExactOctreeIndex, HandlesManyCoincidentPoints) {
   ExactOctreeIndex octree(4);
   octree.add_points(Points(100, Vec3(1, 2, 3)));
