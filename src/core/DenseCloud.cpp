@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -16,10 +17,54 @@ DenseCloud::DenseCloud(double voxel) : voxel_(voxel) {
   }
 }
 
-std::size_t DenseCloud::KeyHash::operator()(const Eigen::Vector3i& key) const {
-  // The spatial hash of Teschner et al. (2003), as KISS-ICP's VoxelHashMap uses.
-  return std::size_t(key.x()) * 73856093u ^ std::size_t(key.y()) * 19349663u ^
-         std::size_t(key.z()) * 83492791u;
+namespace {
+
+// Voxel indices within +-2^20 per axis (+-10 km at 1 cm) pack into 21 bits each.
+constexpr int kKeyBits = 21;
+constexpr std::int64_t kKeyOffset = std::int64_t{1} << (kKeyBits - 1);
+
+std::uint64_t packed_key(const Eigen::Array3d& cell) {
+  std::uint64_t key = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    key = (key << kKeyBits) | std::uint64_t(std::int64_t(cell[axis]) + kKeyOffset);
+  }
+  return key;
+}
+
+// Fibonacci hashing: the multiplication spreads neighbouring keys over the table.
+std::size_t slot_of(std::uint64_t key, std::size_t mask) {
+  return std::size_t((key * 0x9E3779B97F4A7C15ull) >> 20) & mask;
+}
+
+}  // namespace
+
+DenseCloud::Voxel& DenseCloud::voxel_at(std::uint64_t key) {
+  if (2 * (voxels_.size() + 1) > keys_.size()) grow();
+  const std::size_t mask = keys_.size() - 1;
+  std::size_t slot = slot_of(key, mask);
+  while (keys_[slot] != kEmpty && keys_[slot] != key) slot = (slot + 1) & mask;
+  if (keys_[slot] == kEmpty) {
+    keys_[slot] = key;
+    slots_[slot] = std::uint32_t(voxels_.size());
+    voxels_.emplace_back();
+  }
+  return voxels_[slots_[slot]];
+}
+
+void DenseCloud::grow() {
+  const std::vector<std::uint64_t> old_keys = std::move(keys_);
+  const std::vector<std::uint32_t> old_slots = std::move(slots_);
+  const std::size_t capacity = std::max<std::size_t>(1024, 2 * old_keys.size());
+  keys_.assign(capacity, kEmpty);
+  slots_.assign(capacity, 0);
+  const std::size_t mask = capacity - 1;
+  for (std::size_t i = 0; i < old_keys.size(); ++i) {
+    if (old_keys[i] == kEmpty) continue;
+    std::size_t slot = slot_of(old_keys[i], mask);
+    while (keys_[slot] != kEmpty) slot = (slot + 1) & mask;
+    keys_[slot] = old_keys[i];
+    slots_[slot] = old_slots[i];
+  }
 }
 
 void DenseCloud::add_scan(const Scan& scan, const Pose& pose) {
@@ -42,31 +87,26 @@ void DenseCloud::add_point(const Vec3& position, float intensity, double time) {
     unfiltered_.push_back({position, intensity, time});
     return;
   }
-  const Eigen::Array3d cell_index = (position / voxel_).array().floor();
-  // A key must fit an int: farther than ~2e9 voxels from the origin is no map of a building.
-  if ((cell_index.abs() > 2e9).any()) return;
-  const Eigen::Vector3i key = cell_index.cast<int>();
-  Voxel& cell = voxels_[key];
-  if (cell.count == 0) cell.first_time = time;
-  cell.sum += position;
-  cell.intensity_sum += intensity;
-  ++cell.count;
+  const Eigen::Array3d cell = (position / voxel_).array().floor();
+  // Beyond the packed key's range is no map of a building: dropped (not counted as added).
+  if ((cell.abs() >= double(kKeyOffset)).any()) {
+    --points_added_;
+    return;
+  }
+  Voxel& v = voxel_at(packed_key(cell));
+  if (v.count == 0) v.first_time = time;
+  v.sum += position;
+  v.intensity_sum += intensity;
+  ++v.count;
 }
 
 std::vector<DensePoint> DenseCloud::points() const {
   if (voxel_ <= 0.0) return unfiltered_;
   std::vector<DensePoint> points;
   points.reserve(voxels_.size());
-  for (const auto& [key, cell] : voxels_) {
-    points.push_back(
-        {cell.sum / cell.count, float(cell.intensity_sum / cell.count), cell.first_time});
+  for (const Voxel& v : voxels_) {
+    points.push_back({v.sum / v.count, float(v.intensity_sum / v.count), v.first_time});
   }
-  // Scan order, as a reader of the cloud expects; the hash map's order is arbitrary.
-  std::sort(points.begin(), points.end(), [](const DensePoint& a, const DensePoint& b) {
-    if (a.time != b.time) return a.time < b.time;
-    return std::lexicographical_compare(a.position.data(), a.position.data() + 3, b.position.data(),
-                                        b.position.data() + 3);
-  });
   return points;
 }
 

@@ -6,7 +6,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "core/Types.hpp"
@@ -30,6 +29,7 @@ class DenseCloud {
   void add_scan(const Scan& scan, const Pose& pose);
   void add_point(const Vec3& position, float intensity, double time);
 
+  // In the order the voxels were first hit: scan order, as a reader of the cloud expects.
   std::vector<DensePoint> points() const;
   std::size_t size() const;
   std::uint64_t points_added() const { return points_added_; }
@@ -42,15 +42,17 @@ class DenseCloud {
     double first_time = 0.0;
     std::uint32_t count = 0;
   };
-  struct KeyHash {
-    std::size_t operator()(const Eigen::Vector3i& key) const;
-  };
-  struct KeyEqual {
-    bool operator()(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const { return a == b; }
-  };
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+
+  Voxel& voxel_at(std::uint64_t key);
+  void grow();
 
   double voxel_;
-  std::unordered_map<Eigen::Vector3i, Voxel, KeyHash, KeyEqual> voxels_;
+  // An open-addressing hash table (linear probing) from the packed voxel key to the voxel: one
+  // allocation for millions of voxels where a node-based map makes one each.
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::uint32_t> slots_;  // index into voxels_, per key
+  std::vector<Voxel> voxels_;
   std::vector<DensePoint> unfiltered_;
   std::uint64_t points_added_ = 0;
 };

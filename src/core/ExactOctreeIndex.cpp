@@ -153,10 +153,18 @@ void ExactOctreeIndex::find_nearest(const Points& queries, std::vector<Neighbour
 // the answer is the one a search would give.
 void ExactOctreeIndex::find_nearest_again(const Points& queries,
                                           std::vector<Neighbour>& nearest) const {
-  if (root_ == kNoChild || nearest.size() != queries.size()) return find_nearest(queries, nearest);
+  if (root_ == kNoChild || nearest.empty()) return find_nearest(queries, nearest);
   constexpr double kMargin = 1e-9;  // m, far above rounding, far below any map spacing
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  const std::size_t warm = std::min(nearest.size(), queries.size());
+  nearest.resize(queries.size());
   for (std::size_t i = 0; i < queries.size(); ++i) {
     Neighbour& n = nearest[i];
+    // No old neighbour for this query, or one from a map that has since been replaced.
+    if (i >= warm || n.index >= points_.size()) {
+      n = searched(queries[i], {0, kInfinity, 0, kInfinity});
+      continue;
+    }
     const double d1 = (points_[n.index] - queries[i]).squaredNorm();
     const double delta = (queries[i] - n.searched_from).norm();
     if (n.searched_size == points_.size() && std::sqrt(d1) + delta + kMargin < n.second_distance) {
@@ -165,9 +173,8 @@ void ExactOctreeIndex::find_nearest_again(const Points& queries,
     }
     // The old two nearest are real points, so their distances bound the search and the answers
     // stay exact; after a small move they are near the answers, so most of the tree is pruned.
-    TwoNearest start{std::uint32_t(n.index), d1, std::uint32_t(n.second_index),
-                     std::numeric_limits<double>::infinity()};
-    if (n.searched_size > 0 && n.second_index != n.index) {
+    TwoNearest start{std::uint32_t(n.index), d1, std::uint32_t(n.second_index), kInfinity};
+    if (n.second_index < points_.size() && n.second_index != n.index) {
       start.second = (points_[n.second_index] - queries[i]).squaredNorm();
       if (start.second < start.first) {
         std::swap(start.index, start.second_index);

@@ -35,7 +35,8 @@ class NearestNeighbourIndex {
   // For each query the nearest indexed point; `nearest` is resized to queries.size().
   virtual void find_nearest(const Points& queries, std::vector<Neighbour>& nearest) const = 0;
   // The same, for queries that moved a little since `nearest` was found for them (the next ICP
-  // iteration): an exact index starts from the old neighbour's distance as its bound.
+  // iteration, or the next scan's points): an exact index starts from the old neighbours as its
+  // bounds. `nearest` may hold fewer or more entries than there are queries.
   virtual void find_nearest_again(const Points& queries, std::vector<Neighbour>& nearest) const {
     find_nearest(queries, nearest);
   }

@@ -27,7 +27,7 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
 
 Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
                                     double max_distance, std::vector<Neighbour>& nearest) {
-  if (nearest.size() == scan.points.size()) {
+  if (!nearest.empty()) {
     map.find_nearest_again(scan.points, nearest);
   } else {
     map.find_nearest(scan.points, nearest);
@@ -136,7 +136,7 @@ bool ScanMatcher::iterate(const WorldMap& map, const Vec3& initial, bool estimat
 }
 
 MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, const Vec3& initial,
-                               bool estimate_yaw) const {
+                               bool estimate_yaw, std::vector<Neighbour>* warm_start) const {
   MatchResult result;
   result.position = initial;
   ScanPoints moving = scan;
@@ -144,7 +144,8 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, cons
   const double max_distance = config_.max_correspondence_distance;
 
   // Find initial error: the pairs found here also serve the first iteration.
-  std::vector<Neighbour> nearest;
+  std::vector<Neighbour> own_nearest;
+  std::vector<Neighbour>& nearest = warm_start ? *warm_start : own_nearest;
   Correspondences pairs = find_nearest_points(map, moving, max_distance, nearest);
   if (pairs.empty()) return result;
   result.error_before = error_function(pairs);

@@ -70,9 +70,11 @@ class ScanMatcher {
   // scan: world-oriented points relative to the body origin; initial: the body position to start
   // from (the last position, as the seed, which has no motion model; or the caller's prediction).
   // estimate_yaw: also turn the scan about the body (PlanarCorrection); false and a map without
-  // normals is the seed's translation-only ICP exactly.
+  // normals is the seed's translation-only ICP exactly. warm_start: the neighbours of the last
+  // match (kept by the caller from scan to scan); consecutive scans see nearly the same places,
+  // so an exact index starts its searches from them. The answers do not depend on it.
   MatchResult match(const WorldMap& map, const ScanPoints& scan, const Vec3& initial,
-                    bool estimate_yaw = false) const;
+                    bool estimate_yaw = false, std::vector<Neighbour>* warm_start = nullptr) const;
 
  private:
   bool converged(const PlanarCorrection& step) const;

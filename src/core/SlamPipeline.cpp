@@ -110,17 +110,17 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
 MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted) {
   const std::string& heading = config_.icp.heading;
   const Vec3& start = predicted.position;
-  if (heading == "every_scan") return matcher_.match(map_, points, start, true);
+  if (heading == "every_scan") return matcher_.match(map_, points, start, true, &nearest_);
   if (heading == "periodic_check" && heading_check_due(predicted)) {
     scans_since_heading_check_ = 0;
-    MatchResult checked = matcher_.match(map_, points, start, true);
+    MatchResult checked = matcher_.match(map_, points, start, true, &nearest_);
     if (checked.outcome == ScanOutcome::Accepted &&
         std::abs(checked.yaw) > config_.icp.heading_check_tolerance) {
       return checked;
     }
   }
   ++scans_since_heading_check_;
-  return matcher_.match(map_, points, start, false);
+  return matcher_.match(map_, points, start, false, &nearest_);
 }
 
 bool SlamPipeline::heading_check_due(const Pose& predicted) const {

@@ -76,6 +76,7 @@ class SlamPipeline {
   double heading_correction_ = 0.0;
   int scans_since_heading_check_ = 0;
   std::array<std::size_t, kScanOutcomeCount> counts_{};
+  std::vector<Neighbour> nearest_;  // the last match's neighbours, the next one's warm start
 };
 
 }  // namespace uavslam

@@ -49,13 +49,27 @@ TEST(DenseCloud, KeepsTheCentroidOfEachVoxel) {
   cloud.add_point(Vec3(-0.01, 0.0, 0.0), 7.0f, 4.0);  // below zero: its own voxel
   ASSERT_EQ(cloud.size(), 3u);
   EXPECT_EQ(cloud.points_added(), 4u);
-  const std::vector<DensePoint> points = cloud.points();  // in time order
+  const std::vector<DensePoint> points = cloud.points();  // in the order first hit
   ASSERT_EQ(points.size(), 3u);
-  EXPECT_TRUE(points[0].position.isApprox(Vec3(0.15, 0.0, 0.0)));
-  EXPECT_TRUE(points[1].position.isApprox(Vec3(0.02, 0.03, 0.05))) << points[1].position;
-  EXPECT_FLOAT_EQ(points[1].intensity, 2.0f);
-  EXPECT_DOUBLE_EQ(points[1].time, 2.0) << "the time of the voxel's first point";
+  EXPECT_TRUE(points[0].position.isApprox(Vec3(0.02, 0.03, 0.05))) << points[0].position;
+  EXPECT_FLOAT_EQ(points[0].intensity, 2.0f);
+  EXPECT_DOUBLE_EQ(points[0].time, 2.0) << "the time of the voxel's first point";
+  EXPECT_TRUE(points[1].position.isApprox(Vec3(0.15, 0.0, 0.0)));
   EXPECT_TRUE(points[2].position.isApprox(Vec3(-0.01, 0.0, 0.0)));
+}
+
+TEST(DenseCloud, ManyVoxelsSurviveTheTableGrowing) {
+  DenseCloud cloud(0.01);
+  for (int i = 0; i < 5000; ++i) {
+    for (int copy = 0; copy < 3; ++copy)
+      cloud.add_point(Vec3(0.01 * i + 0.005, -3.0, 2.0), 1.0f, i);
+  }
+  ASSERT_EQ(cloud.size(), 5000u);
+  const std::vector<DensePoint> points = cloud.points();
+  for (int i = 0; i < 5000; ++i) {
+    ASSERT_NEAR(points[i].position.x(), 0.01 * i + 0.005, 1e-9) << i;
+    ASSERT_EQ(points[i].time, double(i));
+  }
 }
 
 TEST(DenseCloud, DropsPointsItCannotPlace) {
