@@ -2,12 +2,14 @@
 # (docker/install-deps.sh, the one dependency list), configures and builds first.
 BUILD      ?= build
 BUILD_ASAN ?= build-asan
+BUILD_FUZZ ?= build-fuzz
+FUZZ_SECONDS ?= 30
 JOBS       ?= $(shell nproc)
 # ccache keys on paths relative to the checkout, so a fresh clone (CI) reuses earlier builds.
 export CCACHE_BASEDIR := $(CURDIR)
 UAVSLAM    := $(BUILD)/bin/uavslam
 
-.PHONY: all deps configure build demo simulate test test-unit test-asan bench bench-latency sweep real-logs \
+.PHONY: all deps configure build demo simulate test test-unit test-asan fuzz bench bench-latency sweep real-logs \
         format format-check clean
 
 all: build
@@ -34,15 +36,34 @@ simulate: build
 	  --out out/simulate
 
 # Every test: unit and integration tests of the release build, then the unit tests under
-# AddressSanitizer + UndefinedBehaviorSanitizer.
+# AddressSanitizer + UndefinedBehaviorSanitizer, then the log readers fuzzed for a bounded time.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
 	$(MAKE) test-asan
+	$(MAKE) fuzz
 
 test-asan: deps
 	cmake -S . -B $(BUILD_ASAN) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUAVSLAM_SANITIZE=ON
 	cmake --build $(BUILD_ASAN) -j$(JOBS) --target unit_tests
 	cd $(BUILD_ASAN) && ctest -L unit --output-on-failure -j$(JOBS)
+
+# The CARMEN and MCAP readers under libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS each:
+# seeds from test/fuzz/corpus, the inputs it finds kept in $(BUILD_FUZZ)/corpus for the next run;
+# a crash leaves its input as crash-* here and fails the target.
+fuzz: deps
+	CC=clang CXX=clang++ cmake -S . -B $(BUILD_FUZZ) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DUAVSLAM_FUZZ=ON -DUAVSLAM_BENCH=OFF
+	cmake --build $(BUILD_FUZZ) -j$(JOBS) --target fuzz_targets
+	for reader in carmen mcap; do \
+	  mkdir -p $(BUILD_FUZZ)/corpus/$$reader && \
+	  log=$(BUILD_FUZZ)/fuzz_$$reader.log; \
+	  if ! $(BUILD_FUZZ)/test/fuzz/fuzz_$${reader}_reader -max_total_time=$(FUZZ_SECONDS) \
+	      -rss_limit_mb=2048 -malloc_limit_mb=512 -print_final_stats=1 \
+	      $(BUILD_FUZZ)/corpus/$$reader test/fuzz/corpus/$$reader > $$log 2>&1; then \
+	    tail -60 $$log; echo "fuzz: fuzz_$${reader}_reader failed (whole output: $$log)"; exit 1; \
+	  fi; \
+	  echo "fuzz: fuzz_$${reader}_reader: $$(grep -h '^Done' $$log), no crash"; \
+	done
 
 # Speed: the matcher benchmark's tables and the end-to-end latency (README "Speed").
 bench: build
@@ -72,4 +93,4 @@ format-check:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN) out
+	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD_FUZZ) out

@@ -15,8 +15,8 @@ PACKAGES=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   # config, command line, output
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libpng-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks; clang's libFuzzer for the log readers (make fuzz); clang-format (make format-check)
+  libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev clang-format
   # the benchmark tables (make bench, make real-logs)
   python3
 )
