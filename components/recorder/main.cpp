@@ -1,16 +1,16 @@
 // recorder: subscribes `scan` and `imu` (sensor QoS) and writes every sample it receives, as the
-// CDR bytes its PubSubType serialises, to a sample log (the format: src/io/SampleLog.hpp). A
-// writer thread owns the file: the DDS threads only serialise and queue, so a slow disk costs
-// counted drops, never a stalled reader. `--dump FILE` prints what a log holds.
+// CDR bytes its PubSubType serialises, to a recording of MCAP files (the conventions, roll-over,
+// flushing and write errors: src/io/RollingMcapWriter.hpp). A writer thread owns the files: the
+// DDS threads only serialise and queue, so a slow disk costs counted drops, never a stalled
+// reader, and a full disk costs counted losses, never the flight. `--dump FILE` lists a file.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cstdio>
 #include <deque>
 #include <exception>
-#include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -23,10 +23,12 @@
 #include "common/NodeOptions.hpp"
 #include "common/RunNode.hpp"
 #include "common/StopRequest.hpp"
+#include "dds/IdlSchemas.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Reader.hpp"
 #include "dds/Topics.hpp"
-#include "io/SampleLog.hpp"
+#include "io/McapListing.hpp"
+#include "io/RollingMcapWriter.hpp"
 
 namespace uavslam {
 namespace {
@@ -34,16 +36,42 @@ namespace {
 const std::vector<std::string> kRecordableTopics{dds::kScanTopic, dds::kImuTopic};
 
 struct RecorderOptions {
-  std::string out = "out/recording.uavlog";
+  std::string out = "out/recording.mcap";
   std::vector<std::string> topics = kRecordableTopics;
-  int queue_capacity = 4000;  // samples: ~17 s of scan (40 Hz) + imu (200 Hz)
+  int queue_capacity = 4000;    // samples: ~17 s of scan (40 Hz) + imu (200 Hz)
+  double max_file_mb = 512;     // 0: no limit
+  double max_file_seconds = 0;  // 0: no limit
+  double flush_seconds = 1;
+  double retry_seconds = 5;
   std::string dump;
 };
 
-std::int64_t now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
+// A sample on its way from a DDS thread to the writer thread.
+struct QueuedSample {
+  std::size_t topic = 0;  // the recording's topic handle
+  std::uint64_t receive_time_ns = 0;
+  std::uint64_t source_time_ns = 0;
+  std::vector<std::uint8_t> payload;
+};
+
+io::RollingMcapOptions recording_options(const RecorderOptions& o) {
+  const auto duration = [](double seconds) {
+    return std::chrono::duration_cast<io::RollingMcapOptions::Clock::duration>(
+        std::chrono::duration<double>(seconds));
+  };
+  io::RollingMcapOptions r;
+  r.max_file_bytes = static_cast<std::uint64_t>(o.max_file_mb * 1024 * 1024);
+  r.max_file_duration = duration(o.max_file_seconds);
+  r.flush_interval = duration(o.flush_seconds);
+  r.retry_interval = duration(o.retry_seconds);
+  r.report = [](const std::string& line) { std::cerr << "recorder: " << line << "\n"; };
+  return r;
+}
+
+std::uint64_t now_ns() {
+  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                        std::chrono::system_clock::now().time_since_epoch())
+                                        .count());
 }
 
 // The sample's CDR bytes exactly as PubSubType::serialize writes them (encapsulation included),
@@ -58,12 +86,10 @@ bool to_cdr(PubSubType& type, const typename PubSubType::type& sample,
   return true;
 }
 
-// Per topic; the DDS thread counts what arrives, the writer thread what reaches the file.
+// Per topic, counted by the DDS thread (the writer counts what reaches the files).
 struct TopicCounts {
-  std::string topic;
   std::atomic<std::uint64_t> received{0};
   std::atomic<std::uint64_t> dropped{0};  // queue full, or not serialisable
-  std::uint64_t written = 0;
 };
 
 class RecorderNode {
@@ -71,7 +97,7 @@ class RecorderNode {
   RecorderNode(const process::NodeOptions& node, const RecorderOptions& o)
       : participant_(node.domain, process::profiles_path(node), node.participant_profile,
                      "recorder"),
-        log_(create_log(o.out)),
+        recording_(o.out, recording_options(o)),
         queue_(static_cast<std::size_t>(o.queue_capacity)) {
     for (const std::string& base : o.topics) {
       const std::string topic = dds::topic_name(node.vehicle, base);
@@ -87,9 +113,9 @@ class RecorderNode {
   ~RecorderNode() { finish(); }
 
   int run() {
-    writer_ = std::thread([this] { write_loop(); });
-    std::cerr << "recorder: recording " << topic_list() << " to " << log_.path() << " (domain "
-              << participant_.domain_id() << ")\n";
+    std::cerr << "recorder: recording " << topic_list() << " to " << recording_.current_file()
+              << " (domain " << participant_.domain_id() << ")\n";
+    writer_ = std::thread([this] { write_loop(); });  // from now on it alone uses recording_
     std::size_t scan_writers = 0, imu_writers = 0;
     while (!process::stop_requested() && !writer_failed_) {
       if (scans_) watch(*scans_, scan_writers);
@@ -99,17 +125,12 @@ class RecorderNode {
     finish();
     if (writer_error_) std::rethrow_exception(writer_error_);
     print_counts();
-    return 0;
+    if (recording_.lost() == 0) return 0;
+    std::cerr << "recorder: " << recording_.lost() << " samples lost to write errors\n";
+    return 1;
   }
 
  private:
-  static io::SampleLogWriter create_log(const std::string& path) {
-    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-    std::error_code ignored;  // a failure shows as the writer's FileError naming the path
-    if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
-    return io::SampleLogWriter(path);
-  }
-
   // Stops on a publisher whose QoS cannot match; says when publishers come and go (a recording
   // with a silent topic is then explained by its stderr).
   template <typename Reader>
@@ -125,17 +146,19 @@ class RecorderNode {
   std::unique_ptr<dds::Reader<PubSubType>> subscribe(const std::string& topic,
                                                      const std::string& profile) {
     auto type = std::make_shared<PubSubType>();
-    const std::uint16_t channel = log_.add_channel(topic, type->getName());
-    // counts_ is indexed by channel id: one new channel per subscribed topic, in order.
-    if (channel != counts_.size()) throw std::logic_error("topic '" + topic + "' subscribed twice");
+    const std::optional<std::string> idl = dds::idl_schema(type->getName());
+    if (!idl) throw std::logic_error(std::string("no IDL for ") + type->getName());
+    const std::size_t handle = recording_.add_topic(topic, type->getName(), *idl);
+    // counts_ is indexed by topic handle: one new handle per subscribed topic, in order.
+    if (handle != counts_.size()) throw std::logic_error("topic '" + topic + "' subscribed twice");
     TopicCounts& counts = counts_.emplace_back();
-    counts.topic = topic;
     // Runs on the reader's DDS thread: serialise, queue, count; never touch the file.
-    auto on_sample = [this, type, channel, &counts](
-                         const typename PubSubType::type& sample,
-                         const eprosima::fastdds::dds::SampleInfo& info) {
+    auto on_sample = [this, type, handle, &counts](const typename PubSubType::type& sample,
+                                                   const eprosima::fastdds::dds::SampleInfo& info) {
       ++counts.received;
-      io::LogSample received{channel, now_ns(), info.source_timestamp.to_ns(), {}};
+      const auto source_ns =
+          static_cast<std::uint64_t>(std::max<std::int64_t>(0, info.source_timestamp.to_ns()));
+      QueuedSample received{handle, now_ns(), source_ns, {}};
       if (!to_cdr(*type, sample, received.payload) || !queue_.push(std::move(received))) {
         ++counts.dropped;
       }
@@ -143,21 +166,19 @@ class RecorderNode {
     return std::make_unique<dds::Reader<PubSubType>>(participant_, topic, profile, on_sample);
   }
 
-  // The writer thread: writes what waits, and flushes whenever it has caught up so the file on
-  // disk is complete up to the last sample received.
+  // The writer thread: writes what waits and flushes every --flush-seconds. A write error is
+  // the recording's to count and report; only a bug ends this loop early.
   void write_loop() {
-    std::vector<io::LogSample> batch;
+    std::vector<QueuedSample> batch;
     try {
       while (queue_.take_all(batch, std::chrono::milliseconds(100))) {
-        for (const io::LogSample& s : batch) {
-          log_.write(s.channel, s.receive_time_ns, s.source_time_ns, s.payload.data(),
-                     s.payload.size());
-          ++counts_[s.channel].written;
+        for (const QueuedSample& s : batch) {
+          recording_.write(s.topic, s.receive_time_ns, s.source_time_ns, s.payload.data(),
+                           s.payload.size());
         }
-        if (!batch.empty()) log_.flush();
+        recording_.tick();
       }
     } catch (const std::exception& e) {
-      // A full or failing disk is a run-time failure (exit 1), not a configuration error.
       writer_error_ = std::make_exception_ptr(std::runtime_error(e.what()));
       writer_failed_ = true;
       queue_.close();  // from now on every sample counts as dropped
@@ -165,37 +186,39 @@ class RecorderNode {
   }
 
   // Stops the readers first (no more samples), then lets the writer drain the queue and closes
-  // the file. Safe to call twice, and from the destructor when run() throws.
+  // the file (summary, Footer). Safe to call twice, and from the destructor when run() throws.
   void finish() {
     scans_.reset();
     imu_.reset();
     queue_.close();
     if (writer_.joinable()) writer_.join();
-    try {
-      log_.close();
-    } catch (...) {
-      if (!writer_error_) writer_error_ = std::current_exception();
-    }
+    recording_.close();
   }
 
   std::string topic_list() const {
     std::string out;
-    for (const TopicCounts& c : counts_) out += (out.empty() ? "" : ", ") + c.topic;
+    for (const io::RecordedTopic& t : recording_.topics())
+      out += (out.empty() ? "" : ", ") + t.topic;
     return out;
   }
 
+  // After finish(): the writer thread has ended.
   void print_counts() const {
-    for (const TopicCounts& c : counts_) {
-      std::cerr << "recorder: " << c.topic << ": " << c.received << " received, " << c.written
-                << " written, " << c.dropped << " dropped\n";
+    for (std::size_t i = 0; i < counts_.size(); ++i) {
+      const io::RecordedTopic& t = recording_.topics()[i];
+      std::cerr << "recorder: " << t.topic << ": " << counts_[i].received << " received, "
+                << t.written << " written, " << counts_[i].dropped << " dropped, " << t.lost
+                << " lost to write errors\n";
     }
-    std::cerr << "recorder: " << log_.bytes_written() << " bytes in " << log_.path() << "\n";
+    std::string files;
+    for (const std::string& f : recording_.files()) files += (files.empty() ? "" : ", ") + f;
+    std::cerr << "recorder: " << recording_.files().size() << " file(s): " << files << "\n";
   }
 
   dds::Participant participant_;
-  io::SampleLogWriter log_;
-  process::HandoffQueue<io::LogSample> queue_;
-  std::deque<TopicCounts> counts_;  // by channel id; a deque never moves its elements
+  io::RollingMcapWriter recording_;
+  process::HandoffQueue<QueuedSample> queue_;
+  std::deque<TopicCounts> counts_;  // by topic handle; a deque never moves its elements
   std::unique_ptr<dds::Reader<msg::LaserScanPubSubType>> scans_;
   std::unique_ptr<dds::Reader<msg::ImuPubSubType>> imu_;
   std::thread writer_;
@@ -203,19 +226,11 @@ class RecorderNode {
   std::exception_ptr writer_error_;
 };
 
-// --dump: one line per channel, then what stopped the reading if the file is damaged (exit 1).
+// --dump: one line per channel, then whether the file was read to its end (exit 1 if not).
 int dump(const std::string& path) {
-  const io::SampleLog log = io::recover_sample_log(path);
-  std::printf("%s: %zu samples\n", path.c_str(), log.samples.size());
-  for (const io::ChannelSummary& s : io::summarize(log)) {
-    const double span = static_cast<double>(s.last_receive_ns - s.first_receive_ns) * 1e-9;
-    std::printf("  %-20s %-28s %8llu samples %12llu bytes over %.3f s\n", s.channel.topic.c_str(),
-                s.channel.type.c_str(), static_cast<unsigned long long>(s.samples),
-                static_cast<unsigned long long>(s.payload_bytes), span);
-  }
-  if (log.damage.empty()) return 0;
-  std::printf("damaged, read up to the damage: %s\n", log.damage.c_str());
-  return 1;
+  const io::McapListing listing = io::list_mcap(path);
+  std::cout << io::format_listing(listing) << std::flush;
+  return listing.report.complete ? 0 : 1;
 }
 
 std::vector<std::string> without_duplicates(const std::vector<std::string>& topics) {
@@ -227,7 +242,8 @@ std::vector<std::string> without_duplicates(const std::vector<std::string>& topi
 }
 
 void apply_own_config(const CLI::App& app, const io::YamlReader& section, RecorderOptions& o) {
-  section.expect_keys_only({"out", "topics", "queue_capacity"});
+  section.expect_keys_only({"out", "topics", "queue_capacity", "max_file_mb", "max_file_seconds",
+                            "flush_seconds", "retry_seconds"});
   if (process::unset(app, "--out")) o.out = section.get_string_or("out", o.out);
   if (process::unset(app, "--topics") && section.has("topics")) {
     o.topics.clear();
@@ -239,6 +255,15 @@ void apply_own_config(const CLI::App& app, const io::YamlReader& section, Record
     o.queue_capacity =
         section.get_int_or("queue_capacity", o.queue_capacity, io::NumberRange::at_least(1));
   }
+  const auto seconds = [&](const char* flag, const char* key, double& value,
+                           io::NumberRange range) {
+    if (process::unset(app, flag)) value = section.get_double_or(key, value, range);
+  };
+  seconds("--max-file-mb", "max_file_mb", o.max_file_mb, io::NumberRange::non_negative());
+  seconds("--max-file-seconds", "max_file_seconds", o.max_file_seconds,
+          io::NumberRange::non_negative());
+  seconds("--flush-seconds", "flush_seconds", o.flush_seconds, io::NumberRange::positive());
+  seconds("--retry-seconds", "retry_seconds", o.retry_seconds, io::NumberRange::positive());
 }
 
 }  // namespace
@@ -246,12 +271,17 @@ void apply_own_config(const CLI::App& app, const io::YamlReader& section, Record
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "recorder: subscribes scan and imu and writes every sample (CDR bytes) to a sample log; "
-      "--dump FILE prints what a log holds"};
+      "recorder: subscribes scan and imu and writes every sample (CDR bytes) to MCAP files: "
+      "--out out/flight.mcap writes out/flight_000.mcap, then flight_001.mcap, ... at each "
+      "roll-over (existing files of those names are overwritten); each file is complete on its "
+      "own. A write error (disk full) is reported once, its samples are counted as lost, a new "
+      "file is tried every --retry-seconds, and the exit code is 1. --dump FILE lists a file"};
   uavslam::process::NodeOptions node;
   uavslam::RecorderOptions options;
   uavslam::process::add_node_options(app, node);
-  app.add_option("--out", options.out, "sample log to write (created or truncated)")
+  app.add_option(
+         "--out", options.out,
+         "the recording's name: NAME.mcap gives the files NAME_000.mcap, NAME_001.mcap, ...")
       ->capture_default_str();
   app.add_option("--topics", options.topics, "topics to record, comma-separated")
       ->delimiter(',')
@@ -261,8 +291,25 @@ int main(int argc, char** argv) {
                  "samples waiting for the disk before new ones are dropped")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--max-file-mb", options.max_file_mb,
+                 "start the next file before one passes this size (MiB; 0: no limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--max-file-seconds", options.max_file_seconds,
+                 "start the next file after one has been open this long (0: no limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--flush-seconds", options.flush_seconds,
+                 "hand the samples to the disk (fdatasync) this often: what a crash can lose")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--retry-seconds", options.retry_seconds,
+                 "after a write error, try a new file this often")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--dump", options.dump,
-                 "print a sample log's channels, counts and time spans, then exit")
+                 "list an MCAP file's channels (topic, type, messages, first/last time) and "
+                 "whether it is complete, then exit (1 if damaged)")
       ->check(CLI::ExistingFile);
   if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();

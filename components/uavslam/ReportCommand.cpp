@@ -42,7 +42,7 @@ void print_outputs(const fs::path& run, const fs::path& gcs, const nlohmann::jso
     separator = ", ";
   }
   std::cout << "}\n                    " << run.string() << "/logs/*.log";
-  for (const char* extra : {"recording.uavlog", "map_server"}) {
+  for (const char* extra : {"recording_000.mcap", "map_server"}) {
     if (fs::exists(run / extra)) std::cout << ", " << (run / extra).string();
   }
   std::cout << "\n";

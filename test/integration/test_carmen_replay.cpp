@@ -28,7 +28,7 @@
 #include "dds/Profiles.hpp"
 #include "dds/Reader.hpp"
 #include "dds/Topics.hpp"
-#include "io/SampleLog.hpp"
+#include "io/McapListing.hpp"
 
 namespace uavslam {
 namespace {
@@ -206,14 +206,11 @@ class MatcherListener {
   dds::Reader<msg::MatcherStatusPubSubType> status_;
 };
 
-std::size_t scans_recorded(const std::string& file) {
-  const io::SampleLog log = io::read_sample_log(file);
-  std::size_t scans = 0;
-  for (const io::LogSample& s : log.samples) {
-    for (const io::LogChannel& c : log.channels)
-      scans += c.id == s.channel && c.topic == "uav1/scan";
-  }
-  return scans;
+// The scans in a recorder's file, which it closed (summary, Footer) when it stopped.
+std::uint64_t scans_recorded(const std::string& file) {
+  const io::McapListing listing = io::list_mcap(file);
+  EXPECT_TRUE(listing.report.complete) << file << ": " << listing.report.problem;
+  return io::messages_on(listing, "uav1/scan");
 }
 
 class CarmenReplay : public test::ProcessTest {
@@ -280,7 +277,7 @@ TEST_F(CarmenReplay, ASyntheticLogReachesTheMatcherAndTheRecorderScanForScan) {
   constexpr int kScans = 40;
   const std::string log_file = path("room.clf");
   const SyntheticLog log = write_synthetic_log(log_file, kScans);
-  const std::string recording = path("replay.uavlog");
+  const std::string recording = path("replay.mcap");
 
   MatcherListener listener(kDomain, "uav1");
   process::ChildProcess slam(matcher(kDomain, "2,3,0"), log_path("slam_matcher"));
@@ -309,7 +306,7 @@ TEST_F(CarmenReplay, ASyntheticLogReachesTheMatcherAndTheRecorderScanForScan) {
   EXPECT_THAT(imu.log(), HasSubstr("published 40 odometry headings"));
   EXPECT_THAT(slam.log(), HasSubstr("slam_matcher: 40 scans received"));
   EXPECT_THAT(recorder.log(), HasSubstr("uav1/scan: 40 received, 40 written, 0 dropped"));
-  EXPECT_EQ(scans_recorded(recording), 40u);
+  EXPECT_EQ(scans_recorded(path("replay_000.mcap")), 40u);
 
   // Most scans matched: a matcher that falls behind skips scans (ScanQueue), but not here.
   const MatcherCounts counts = listener.counts();

@@ -1,9 +1,13 @@
-// The recorder process end to end: the test publishes scans and IMU samples on its own domain,
-// the real `recorder` writes them to a sample log, stops on SIGTERM, and the log read back holds
-// every sample, byte for byte what the PubSubType serialises.
+// The recorder process end to end: the test publishes scans and IMU samples on its own domain and
+// the real `recorder` writes them to MCAP files. Stopped by SIGTERM it leaves a complete file
+// holding every sample, byte for byte what the PubSubType serialises; killed by SIGKILL, a file
+// from which every flushed sample is read back; it rolls over to numbered files; and a disk that
+// fills (a file size limit, `ulimit -f`, on the process) costs counted samples and exit code 1,
+// never the DDS side, and recording resumes in a new file.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -15,20 +19,29 @@
 
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
+#include "dds/IdlSchemas.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Profiles.hpp"
 #include "dds/Topics.hpp"
 #include "dds/Writer.hpp"
-#include "io/SampleLog.hpp"
+#include "io/McapListing.hpp"
+#include "io/McapReader.hpp"
+#include "io/RollingMcapWriter.hpp"
 
 namespace uavslam {
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
+using testing::ContainsRegex;
 using testing::HasSubstr;
 
-constexpr int kDomain = 179;  // this test's own DDS domain
+// This test's own DDS domains, one per test.
+constexpr int kCleanStopDomain = 150;
+constexpr int kKilledDomain = 151;
+constexpr int kRollOverDomain = 152;
+constexpr int kDiskFullDomain = 153;
+constexpr int kConfigDomain = 154;
 constexpr char kVehicle[] = "rec";
 
 // Polls until `done` holds or `timeout` passes (for conditions only a file or a log shows).
@@ -42,9 +55,28 @@ bool eventually(Condition done, std::chrono::milliseconds timeout) {
   return true;
 }
 
-std::size_t samples_in(const std::string& path) {
+// The messages a recorder's file holds so far (it may be writing it).
+std::uint64_t samples_in(const std::string& path) {
   if (!fs::exists(path)) return 0;
-  return io::recover_sample_log(path).samples.size();
+  return io::list_mcap(path).messages;
+}
+
+struct StreamedFile {
+  std::vector<io::mcap::Message> messages;
+  std::map<std::uint16_t, io::mcap::Channel> channels;
+  std::map<std::uint16_t, io::mcap::Schema> schemas;
+  io::McapReadReport report;
+};
+
+StreamedFile stream(const std::string& path) {
+  io::McapStreamReader reader(path);
+  StreamedFile file;
+  io::mcap::Message message;
+  while (reader.next(message)) file.messages.push_back(message);
+  file.channels = reader.channels();
+  file.schemas = reader.schemas();
+  file.report = reader.report();
+  return file;
 }
 
 msg::LaserScan scan_number(std::uint64_t i) {
@@ -75,127 +107,311 @@ msg::Imu imu_number(std::uint64_t i) {
 }
 
 template <typename PubSubType>
-typename PubSubType::type decode(const io::LogSample& sample) {
+typename PubSubType::type decode(const io::mcap::Message& message) {
   PubSubType type;
   eprosima::fastrtps::rtps::SerializedPayload_t payload(
-      static_cast<std::uint32_t>(sample.payload.size()));
-  std::copy(sample.payload.begin(), sample.payload.end(), payload.data);
-  payload.length = static_cast<std::uint32_t>(sample.payload.size());
-  typename PubSubType::type message;
-  EXPECT_TRUE(type.deserialize(&payload, &message));
-  return message;
+      static_cast<std::uint32_t>(message.data.size()));
+  std::copy(message.data.begin(), message.data.end(), payload.data);
+  payload.length = static_cast<std::uint32_t>(message.data.size());
+  typename PubSubType::type sample;
+  EXPECT_TRUE(type.deserialize(&payload, &sample));
+  return sample;
 }
 
-using Recorder = test::ProcessTest;
+// The per-topic counts the recorder prints when it ends.
+struct PrintedCounts {
+  std::uint64_t received = 0, written = 0, dropped = 0, lost = 0;
+};
+
+PrintedCounts printed_counts(const std::string& log, const std::string& topic) {
+  const std::regex line(topic +
+                        ": ([0-9]+) received, ([0-9]+) written, ([0-9]+) dropped, ([0-9]+) lost");
+  std::smatch m;
+  PrintedCounts counts;
+  if (!std::regex_search(log, m, line)) {
+    ADD_FAILURE() << "no counts of " << topic << " in\n" << log;
+    return counts;
+  }
+  counts.received = std::stoull(m[1]);
+  counts.written = std::stoull(m[2]);
+  counts.dropped = std::stoull(m[3]);
+  counts.lost = std::stoull(m[4]);
+  return counts;
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t count = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+// The test as the vehicle's sensors: scans and IMU samples on one domain, sent paced as sensors
+// send them (scan 40 Hz, IMU 200 Hz; here faster): a BEST_EFFORT burst of 60 samples at once lost
+// 2 of them when the host was loaded by the other tests of `ctest -j2`, which no sensor does.
+class Sensors {
+ public:
+  explicit Sensors(int domain)
+      : participant_(domain, dds::default_profiles_path(), "uavslam_loopback", "sensors"),
+        scans_(participant_, dds::topic_name(kVehicle, dds::kScanTopic), "sensor_writer"),
+        imu_(participant_, dds::topic_name(kVehicle, dds::kImuTopic), "sensor_writer") {}
+
+  // Waits until the recorder's readers have matched us: a BEST_EFFORT sample sent before that is
+  // not delivered, so wait for the recorder to say both of its readers have.
+  ::testing::AssertionResult matched(const process::ChildProcess& recorder) {
+    if (!scans_.wait_for_matched(1, 30s) || !imu_.wait_for_matched(1, 30s)) {
+      return ::testing::AssertionFailure() << "no recorder matched\n" << recorder.log();
+    }
+    const bool said = eventually(
+        [&] {
+          const std::string text = recorder.log();
+          return text.find("rec/scan: 1 writer(s) matched") != std::string::npos &&
+                 text.find("rec/imu: 1 writer(s) matched") != std::string::npos;
+        },
+        30s);
+    if (!said) return ::testing::AssertionFailure() << recorder.log();
+    return ::testing::AssertionSuccess();
+  }
+
+  // `scans` scans, each after `imu_per_scan` IMU samples, 1 ms apart.
+  ::testing::AssertionResult publish(std::uint64_t scans, std::uint64_t imu_per_scan) {
+    for (std::uint64_t s = 0; s < scans; ++s) {
+      for (std::uint64_t k = 0; k < imu_per_scan; ++k) {
+        if (!imu_.write(imu_number(imu_sent_++))) return ::testing::AssertionFailure() << "imu";
+        std::this_thread::sleep_for(1ms);
+      }
+      if (!scans_.write(scan_number(scans_sent_++))) return ::testing::AssertionFailure() << "scan";
+      std::this_thread::sleep_for(1ms);
+    }
+    return ::testing::AssertionSuccess();
+  }
+
+  std::uint64_t scans_sent() const { return scans_sent_; }
+  std::uint64_t imu_sent() const { return imu_sent_; }
+
+ private:
+  dds::Participant participant_;
+  dds::Writer<msg::LaserScanPubSubType> scans_;
+  dds::Writer<msg::ImuPubSubType> imu_;
+  std::uint64_t scans_sent_ = 0, imu_sent_ = 0;
+};
+
+class Recorder : public test::ProcessTest {
+ protected:
+  process::ChildProcess start(int domain, const std::vector<std::string>& flags) {
+    std::vector<std::string> extra{"--vehicle", kVehicle};
+    extra.insert(extra.end(), flags.begin(), flags.end());
+    return process::ChildProcess(node_argv("recorder", domain, extra), log_path("recorder"));
+  }
+
+  struct Dumped {
+    int exit_code = -1;
+    std::string output;
+  };
+
+  // `recorder --dump file`, to its end.
+  Dumped dump(const std::string& file) {
+    process::ChildProcess dumped({binary("recorder"), "--dump", file}, path("dump.log"));
+    EXPECT_TRUE(dumped.wait(30s));
+    return {dumped.exit_code(), dumped.log()};
+  }
+};
 
 TEST_F(Recorder, RecordsEveryScanAndImuSampleAndStopsCleanly) {
   constexpr std::uint64_t kBatches = 10, kScansPerBatch = 10, kImuPerScan = 5;
-  const std::string log_file = path("flight.uavlog");
-  process::ChildProcess recorder(
-      node_argv("recorder", kDomain, {"--vehicle", kVehicle, "--out", log_file}),
-      log_path("recorder"));
+  const std::string file = path("flight_000.mcap");
+  process::ChildProcess recorder =
+      start(kCleanStopDomain, {"--out", path("flight.mcap"), "--flush-seconds", "0.2"});
   ASSERT_TRUE(recorder.started());
+  Sensors sensors(kCleanStopDomain);
+  ASSERT_TRUE(sensors.matched(recorder));
 
-  dds::Participant sensors(kDomain, dds::default_profiles_path(), "uavslam_loopback", "sensors");
-  dds::Writer<msg::LaserScanPubSubType> scans(sensors, dds::topic_name(kVehicle, dds::kScanTopic),
-                                              "sensor_writer");
-  dds::Writer<msg::ImuPubSubType> imu(sensors, dds::topic_name(kVehicle, dds::kImuTopic),
-                                      "sensor_writer");
-  ASSERT_TRUE(scans.wait_for_matched(1, 30s)) << recorder.log();
-  ASSERT_TRUE(imu.wait_for_matched(1, 30s)) << recorder.log();
-  // BEST_EFFORT: a sample sent before the recorder's reader has matched us is not delivered, so
-  // wait for the recorder to say both of its readers have.
-  ASSERT_TRUE(eventually(
-      [&] {
-        const std::string text = recorder.log();
-        return text.find("rec/scan: 1 writer(s) matched") != std::string::npos &&
-               text.find("rec/imu: 1 writer(s) matched") != std::string::npos;
-      },
-      30s))
-      << recorder.log();
-
-  // A batch at a time, each waited for in the log (the recorder flushes whenever it catches
-  // up), and the samples of a batch paced 1 ms apart as sensors send them (scan 40 Hz, IMU
-  // 200 Hz; here 5x faster): a BEST_EFFORT burst of 60 samples at once lost 2 of them when the
-  // host was loaded by the other tests of `ctest -j2`, which no sensor does.
-  std::uint64_t scan_seq = 0, imu_seq = 0;
-  const auto paced = [](bool written) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    return written;
-  };
+  // A batch at a time, each waited for in the file (flushed every 0.2 s).
   for (std::uint64_t batch = 0; batch < kBatches; ++batch) {
-    for (std::uint64_t s = 0; s < kScansPerBatch; ++s) {
-      for (std::uint64_t k = 0; k < kImuPerScan; ++k) {
-        ASSERT_TRUE(paced(imu.write(imu_number(imu_seq++))));
-      }
-      ASSERT_TRUE(paced(scans.write(scan_number(scan_seq++))));
-    }
-    const std::size_t expected = scan_seq + imu_seq;
-    ASSERT_TRUE(eventually([&] { return samples_in(log_file) >= expected; }, 30s))
-        << "batch " << batch << ": " << samples_in(log_file) << " of " << expected << " recorded\n"
+    ASSERT_TRUE(sensors.publish(kScansPerBatch, kImuPerScan));
+    const std::uint64_t expected = sensors.scans_sent() + sensors.imu_sent();
+    ASSERT_TRUE(eventually([&] { return samples_in(file) >= expected; }, 30s))
+        << "batch " << batch << ": " << samples_in(file) << " of " << expected << " recorded\n"
         << recorder.log();
   }
-  EXPECT_EQ(recorder.stop(10s), 0) << recorder.log();
-  EXPECT_THAT(recorder.log(), HasSubstr("rec/scan: 100 received, 100 written, 0 dropped"));
-  EXPECT_THAT(recorder.log(), HasSubstr("rec/imu: 500 received, 500 written, 0 dropped"));
+  EXPECT_EQ(recorder.stop(10s, SIGTERM), 0) << recorder.log();
+  EXPECT_THAT(recorder.log(),
+              HasSubstr("rec/scan: 100 received, 100 written, 0 dropped, 0 lost to write errors"));
+  EXPECT_THAT(recorder.log(),
+              HasSubstr("rec/imu: 500 received, 500 written, 0 dropped, 0 lost to write errors"));
+  EXPECT_EQ(io::rolled_files(path("flight.mcap")), std::vector<std::string>{file});
 
-  const io::SampleLog log = io::read_sample_log(log_file);  // complete: SIGTERM flushed it
-  ASSERT_EQ(log.channels.size(), 2u);
-  const auto channel_of = [&](const io::LogSample& s) {
-    for (const io::LogChannel& c : log.channels) {
-      if (c.id == s.channel) return c;
-    }
-    return io::LogChannel{};
-  };
-  std::vector<const io::LogSample*> scan_samples, imu_samples;
-  for (const io::LogSample& s : log.samples) {
-    (channel_of(s).topic == "rec/scan" ? scan_samples : imu_samples).push_back(&s);
-    EXPECT_GT(s.source_time_ns, 0);
-    EXPECT_LE(s.source_time_ns, s.receive_time_ns) << "one host, one clock";
+  // Complete (SIGTERM closed it: summary and Footer), in the recording conventions.
+  io::McapIndexedReader indexed(file);
+  ASSERT_TRUE(indexed.has_summary()) << indexed.summary_problem();
+  ASSERT_EQ(indexed.channels().size(), 2u);
+  std::map<std::string, std::uint16_t> channel_of;
+  for (const auto& [id, channel] : indexed.channels()) {
+    channel_of[channel.topic] = id;
+    EXPECT_EQ(channel.message_encoding, "cdr");
+    const io::mcap::Schema& schema = indexed.schemas().at(channel.schema_id);
+    EXPECT_EQ(schema.encoding, "omgidl");
+    EXPECT_EQ(channel.metadata.at("dds_type"), schema.name);
+    EXPECT_EQ(std::optional<std::string>(schema.data), dds::idl_schema(schema.name));
   }
-  ASSERT_EQ(scan_samples.size(), kBatches * kScansPerBatch);
-  ASSERT_EQ(imu_samples.size(), kBatches * kScansPerBatch * kImuPerScan);
-  EXPECT_EQ(channel_of(*scan_samples.front()).type, "uavslam::msg::LaserScan");
-  EXPECT_EQ(channel_of(*imu_samples.front()).type, "uavslam::msg::Imu");
+  ASSERT_EQ(channel_of.size(), 2u);
+  EXPECT_EQ(indexed.schemas().at(indexed.channels().at(channel_of["rec/scan"]).schema_id).name,
+            "uavslam::msg::LaserScan");
+  EXPECT_EQ(indexed.schemas().at(indexed.channels().at(channel_of["rec/imu"]).schema_id).name,
+            "uavslam::msg::Imu");
+
+  std::vector<io::mcap::Message> scans, imu;
+  const io::McapReadReport report = indexed.read_messages(0, [&](const io::mcap::Message& m) {
+    (m.channel_id == channel_of["rec/scan"] ? scans : imu).push_back(m);
+    EXPECT_GT(m.publish_time, 0u);
+    EXPECT_LE(m.publish_time, m.log_time) << "one host, one clock";
+    return true;
+  });
+  EXPECT_TRUE(report.complete) << report.problem;
+  ASSERT_EQ(scans.size(), kBatches * kScansPerBatch);
+  ASSERT_EQ(imu.size(), kBatches * kScansPerBatch * kImuPerScan);
   for (std::uint64_t i : {std::uint64_t{0}, std::uint64_t{57}, std::uint64_t{99}}) {
-    EXPECT_TRUE(decode<msg::LaserScanPubSubType>(*scan_samples[i]) == scan_number(i)) << i;
+    EXPECT_TRUE(decode<msg::LaserScanPubSubType>(scans[i]) == scan_number(i)) << i;
+    EXPECT_EQ(scans[i].sequence, i);
   }
-  EXPECT_TRUE(decode<msg::ImuPubSubType>(*imu_samples[321]) == imu_number(321));
+  EXPECT_TRUE(decode<msg::ImuPubSubType>(imu[321]) == imu_number(321));
 
-  // --dump reads it back for people.
-  process::ChildProcess dump({binary("recorder"), "--dump", log_file}, path("dump.log"));
-  ASSERT_TRUE(dump.wait(30s));
-  EXPECT_EQ(dump.exit_code(), 0) << dump.log();
-  EXPECT_THAT(dump.log(), HasSubstr("600 samples"));
-  EXPECT_THAT(dump.log(), testing::ContainsRegex("rec/scan +uavslam::msg::LaserScan +100 samples"));
+  // --dump lists it for people.
+  const Dumped listed = dump(file);
+  EXPECT_EQ(listed.exit_code, 0) << listed.output;
+  EXPECT_THAT(listed.output, HasSubstr("600 messages on 2 channels"));
+  EXPECT_THAT(listed.output, ContainsRegex("rec/scan +uavslam::msg::LaserScan +100 messages"));
+  EXPECT_THAT(listed.output, HasSubstr("\ncomplete\n"));
+}
+
+TEST_F(Recorder, AKilledRecorderLeavesEveryFlushedSampleReadable) {
+  const std::string file = path("killed_000.mcap");
+  process::ChildProcess recorder =
+      start(kKilledDomain, {"--out", path("killed.mcap"), "--flush-seconds", "0.2"});
+  Sensors sensors(kKilledDomain);
+  ASSERT_TRUE(sensors.matched(recorder));
+  ASSERT_TRUE(sensors.publish(50, 2));
+  ASSERT_TRUE(eventually([&] { return samples_in(file) >= 150; }, 30s))
+      << samples_in(file) << " of 150 flushed\n"
+      << recorder.log();
+  EXPECT_EQ(recorder.stop(0s, SIGKILL), 128 + SIGKILL);
+
+  const StreamedFile read = stream(file);
+  EXPECT_FALSE(read.report.complete) << "no summary: the recorder never closed it";
+  EXPECT_EQ(read.messages.size(), 150u) << read.report.problem;
+  EXPECT_EQ(read.channels.size(), 2u);
+  std::uint64_t scans = 0;
+  for (const io::mcap::Message& m : read.messages) {
+    if (read.channels.at(m.channel_id).topic != "rec/scan") continue;
+    EXPECT_TRUE(decode<msg::LaserScanPubSubType>(m) == scan_number(scans)) << scans;
+    ++scans;
+  }
+  EXPECT_EQ(scans, 50u);
+
+  const Dumped listed = dump(file);
+  EXPECT_EQ(listed.exit_code, 1) << listed.output;
+  EXPECT_THAT(listed.output, HasSubstr("150 messages on 2 channels"));
+  EXPECT_THAT(listed.output, ContainsRegex("\ndamaged: stopped at byte [0-9]+: "));
+}
+
+TEST_F(Recorder, RollsOverToNumberedFilesThatEachStandAlone) {
+  const std::string base = path("rolled.mcap");
+  process::ChildProcess recorder = start(kRollOverDomain, {"--out", base, "--max-file-mb", "0.05"});
+  Sensors sensors(kRollOverDomain);
+  ASSERT_TRUE(sensors.matched(recorder));
+  ASSERT_TRUE(sensors.publish(100, 1));  // ~4.4 KB a scan: ten files of 50 KiB
+  EXPECT_EQ(recorder.stop(10s, SIGTERM), 0) << recorder.log();
+  EXPECT_THAT(recorder.log(),
+              HasSubstr("rec/scan: 100 received, 100 written, 0 dropped, 0 lost to write errors"));
+
+  const std::vector<std::string> files = io::rolled_files(base);
+  ASSERT_GE(files.size(), 8u) << recorder.log();
+  EXPECT_EQ(files.front(), path("rolled_000.mcap"));
+  std::uint64_t scans = 0, imu = 0;
+  for (const std::string& file : files) {
+    const io::McapListing listing = io::list_mcap(file);
+    EXPECT_TRUE(listing.report.complete) << file << ": " << listing.report.problem;
+    EXPECT_EQ(listing.channels.size(), 2u) << "every file declares every channel: " << file;
+    EXPECT_LE(fs::file_size(file), 60000u) << file;
+    scans += io::messages_on(listing, "rec/scan");
+    imu += io::messages_on(listing, "rec/imu");
+  }
+  EXPECT_EQ(scans, 100u);
+  EXPECT_EQ(imu, 100u);
+  EXPECT_THAT(recorder.log(), HasSubstr("recording to " + path("rolled_001.mcap")));
+}
+
+// The recorder under a file size limit of 2 MiB (root ignores file permissions, not this): its
+// first file fills, writes fail with EFBIG (SIGXFSZ ignored, as a full disk fails with ENOSPC).
+TEST_F(Recorder, AFullDiskCostsCountedSamplesNotTheFlightAndRecordingResumes) {
+  const std::string base = path("full.mcap");
+  std::vector<std::string> argv{"/bin/bash", "-c", "trap '' XFSZ; ulimit -f 2048 && exec \"$@\"",
+                                "limited"};
+  const std::vector<std::string> recorder_argv = node_argv(
+      "recorder", kDiskFullDomain,
+      {"--vehicle", kVehicle, "--out", base, "--flush-seconds", "0.1", "--retry-seconds", "1"});
+  argv.insert(argv.end(), recorder_argv.begin(), recorder_argv.end());
+  process::ChildProcess recorder(argv, log_path("recorder"));
+  Sensors sensors(kDiskFullDomain);
+  ASSERT_TRUE(sensors.matched(recorder));
+
+  // ~4.4 KB a scan: about 480 fill the first file.
+  const auto said = [&](const std::string& text) {
+    return recorder.log().find(text) != std::string::npos;
+  };
+  for (int batch = 0; batch < 20 && !said("cannot write: File too large"); ++batch) {
+    ASSERT_TRUE(sensors.publish(50, 0));
+  }
+  ASSERT_TRUE(wait_for_log(recorder, "cannot write: File too large", 10s)) << recorder.log();
+  // Samples keep coming (and are lost) until the retry opens the next file.
+  for (int batch = 0; batch < 100 && !said("recording resumed"); ++batch) {
+    ASSERT_TRUE(sensors.publish(5, 0));
+    std::this_thread::sleep_for(100ms);
+  }
+  ASSERT_TRUE(wait_for_log(recorder, "recording resumed in " + path("full_001.mcap"), 10s))
+      << recorder.log();
+  ASSERT_TRUE(sensors.publish(20, 0));
+  EXPECT_EQ(recorder.stop(10s, SIGTERM), 1) << "samples were lost\n" << recorder.log();
+
+  const std::string log = recorder.log();
+  EXPECT_EQ(occurrences(log, "cannot write: File too large"), 1u) << "reported once\n" << log;
+  EXPECT_THAT(log, HasSubstr(path("full_000.mcap") + ": cannot write: File too large"));
+  const PrintedCounts scans = printed_counts(log, "rec/scan");
+  EXPECT_EQ(scans.received, sensors.scans_sent()) << log;
+  EXPECT_GT(scans.lost, 0u);
+  EXPECT_EQ(scans.written + scans.dropped + scans.lost, scans.received);
+  EXPECT_THAT(log, HasSubstr(std::to_string(scans.lost) + " samples lost to write errors"));
+
+  // What the recorder says it wrote is in the files: the cut first one and the resumed one.
+  const StreamedFile cut = stream(path("full_000.mcap"));
+  EXPECT_FALSE(cut.report.complete);
+  const StreamedFile resumed = stream(path("full_001.mcap"));
+  EXPECT_TRUE(resumed.report.complete) << resumed.report.problem;
+  EXPECT_EQ(cut.messages.size() + resumed.messages.size(), scans.written);
+  ASSERT_FALSE(cut.messages.empty());
+  ASSERT_FALSE(resumed.messages.empty());
+  EXPECT_GT(resumed.messages.front().sequence, cut.messages.back().sequence + 1)
+      << "the lost samples are a gap in the sequence";
+  EXPECT_EQ(resumed.messages.back().sequence, scans.received - scans.dropped - 1);
 }
 
 TEST_F(Recorder, AnUnknownConfigKeyIsNamedAndRefused) {
   const std::string config = path("recorder.yaml");
-  std::ofstream(config) << "recorder:\n  outt: x.uavlog\n";
-  process::ChildProcess recorder(node_argv("recorder", kDomain, {"--config", config}),
+  std::ofstream(config) << "recorder:\n  max_file_mb: 10\n  outt: x.mcap\n";
+  process::ChildProcess recorder(node_argv("recorder", kConfigDomain, {"--config", config}),
                                  log_path("recorder"));
   ASSERT_TRUE(recorder.wait(30s));
   EXPECT_EQ(recorder.exit_code(), 2);
   EXPECT_THAT(recorder.log(), HasSubstr("outt"));
 }
 
-TEST_F(Recorder, DumpOfATruncatedLogPrintsWhatIsThereAndFails) {
-  const std::string log_file = path("cut.uavlog");
-  {
-    io::SampleLogWriter writer(log_file);
-    const std::vector<std::uint8_t> payload(64, 1);
-    const auto channel = writer.add_channel("rec/imu", "uavslam::msg::Imu");
-    writer.write(channel, 1'000'000'000, 999'000'000, payload.data(), payload.size());
-    writer.write(channel, 2'000'000'000, 1'999'000'000, payload.data(), payload.size());
-    writer.close();
-  }
-  fs::resize_file(log_file, fs::file_size(log_file) - 10);
-  process::ChildProcess dump({binary("recorder"), "--dump", log_file}, path("dump.log"));
-  ASSERT_TRUE(dump.wait(30s));
-  EXPECT_EQ(dump.exit_code(), 1) << dump.log();
-  EXPECT_THAT(dump.log(), HasSubstr("1 samples"));
-  EXPECT_THAT(dump.log(), HasSubstr(log_file + ": byte "));
+TEST_F(Recorder, ARecordingThatCannotStartIsAConfigurationError) {
+  const std::string blocker = write("not_a_dir", "x");
+  process::ChildProcess recorder(
+      node_argv("recorder", kConfigDomain, {"--out", blocker + "/flight.mcap"}),
+      log_path("recorder"));
+  ASSERT_TRUE(recorder.wait(30s));
+  EXPECT_EQ(recorder.exit_code(), 2);
+  EXPECT_THAT(recorder.log(), HasSubstr(blocker + "/flight_000.mcap"));
 }
 
 }  // namespace

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -18,9 +17,9 @@
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
 #include "eval/TrajectoryMetrics.hpp"
+#include "io/McapListing.hpp"
 #include "io/OctreeFile.hpp"
 #include "io/PlyFile.hpp"
-#include "io/SampleLog.hpp"
 #include "io/TumFile.hpp"
 
 namespace uavslam {
@@ -49,7 +48,7 @@ TEST_F(System, TheLauncherFliesTheSixProcessesAndEveryOutputIsWritten) {
       << "\nprocesses:\n"
       << "  - {name: ground_station, args: [--out, " << path("gcs") << "]}\n"
       << "  - {name: map_server, args: [--out, " << path("map") << "]}\n"
-      << "  - {name: recorder, args: [--out, " << path("flight.uavlog") << "]}\n"
+      << "  - {name: recorder, args: [--out, " << path("flight.mcap") << "]}\n"
       << "  - {name: slam_matcher, args: [--sensor, " << kScenario << ", --slam-config, " << kSource
       << "/config/slam.yaml]}\n"
       << "  - {name: imu_bridge, args: " << sensor << "--wait-for-subscribers, \"2\"]}\n"
@@ -86,12 +85,10 @@ TEST_F(System, TheLauncherFliesTheSixProcessesAndEveryOutputIsWritten) {
   EXPECT_TRUE(fs::exists(path("gcs/map_topdown.png")));
 
   // The recorder kept every sample the sensors published (loopback, nothing lost).
-  std::map<std::string, std::uint64_t> recorded;
-  for (const io::ChannelSummary& c : io::summarize(io::read_sample_log(path("flight.uavlog")))) {
-    recorded[c.channel.topic] = c.samples;
-  }
-  EXPECT_EQ(recorded["uav7/scan"], 801u);
-  EXPECT_EQ(recorded["uav7/imu"], 4001u);
+  const io::McapListing recording = io::list_mcap(path("flight_000.mcap"));
+  EXPECT_TRUE(recording.report.complete) << recording.report.problem;
+  EXPECT_EQ(io::messages_on(recording, "uav7/scan"), 801u);
+  EXPECT_EQ(io::messages_on(recording, "uav7/imu"), 4001u);
 }
 
 TEST_F(System, AGroundStationJoiningAfterTheFlightGetsTheMap) {
