@@ -6,35 +6,49 @@ namespace uavslam::process {
 namespace {
 
 constexpr const char* kCarmenPrefix = "carmen:";
+constexpr const char* kMcapPrefix = "mcap:";
 
-bool is_carmen_source(const std::string& source) {
-  return source.rfind(kCarmenPrefix, 0) == 0 && source.size() > std::string(kCarmenPrefix).size();
+bool has_file_prefix(const std::string& source, const std::string& prefix) {
+  return source.rfind(prefix, 0) == 0 && source.size() > prefix.size();
+}
+
+std::optional<std::string> file_after(const std::string& source, const std::string& prefix) {
+  if (!has_file_prefix(source, prefix)) return std::nullopt;
+  return source.substr(prefix.size());
 }
 
 // Empty when `source` names a source this process can read, else what is wrong with it.
 std::string source_problem(const std::string& source) {
-  if (source == "sim" || is_carmen_source(source)) return {};
-  return "expected sim or carmen:FILE (a CARMEN log), got '" + source + "'";
+  if (source == "sim" || has_file_prefix(source, kCarmenPrefix) ||
+      has_file_prefix(source, kMcapPrefix)) {
+    return {};
+  }
+  return "expected sim, carmen:FILE (a CARMEN log) or mcap:FILE (an MCAP recording), got '" +
+         source + "'";
 }
 
 }  // namespace
 
 std::optional<std::string> carmen_log_path(const SimSourceOptions& options) {
-  if (!is_carmen_source(options.source)) return std::nullopt;
-  return options.source.substr(std::string(kCarmenPrefix).size());
+  return file_after(options.source, kCarmenPrefix);
+}
+
+std::optional<std::string> mcap_log_path(const SimSourceOptions& options) {
+  return file_after(options.source, kMcapPrefix);
 }
 
 void add_sim_source_options(CLI::App& app, SimSourceOptions& options) {
   app.add_option("--source", options.source,
-                 "where the data comes from: sim (the flight simulator along --scenario) or "
+                 "where the data comes from: sim (the flight simulator along --scenario), "
                  "carmen:FILE (replay a CARMEN log's laser scans, e.g. the Freiburg benchmark's "
-                 "intel.clf, at the recorded pace times --rate)")
-      ->check(CLI::Validator(source_problem, "sim|carmen:FILE", "source"))
+                 "intel.clf, at the recorded pace times --rate) or mcap:FILE (replay an MCAP "
+                 "recording's messages at their log_time spacing times --rate)")
+      ->check(CLI::Validator(source_problem, "sim|carmen:FILE|mcap:FILE", "source"))
       ->capture_default_str();
   app.add_option("--scenario", options.scenario, "scenario YAML for the sim source")
       ->capture_default_str();
   app.add_option("--rate", options.rate,
-                 "publish this many times faster than real time (carmen: than recorded)")
+                 "publish this many times faster than real time (carmen, mcap: than recorded)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--wait-for-subscribers", options.wait_for_subscribers,
@@ -52,7 +66,7 @@ void add_sim_source_options(CLI::App& app, SimSourceOptions& options) {
                  "is published, the late ones counted); 0: start when ready")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--max-scans", options.max_scans,
-                 "carmen: replay only the log's first this many scans (0: all of them)")
+                 "carmen, mcap: replay only the log's first this many scans (0: all of them)")
       ->capture_default_str();
 }
 
@@ -76,7 +90,7 @@ void apply_sim_source_config(const CLI::App& app, const io::YamlReader& section,
     const io::YamlReader source = section.at("source");
     options.source = source.as_string();
     if (!source_problem(options.source).empty()) {
-      source.fail_expected("sim or carmen:FILE (a CARMEN log)");
+      source.fail_expected("sim, carmen:FILE (a CARMEN log) or mcap:FILE (an MCAP recording)");
     }
   }
   if (unset(app, "--scenario")) {

@@ -1,6 +1,6 @@
 // The options of a sensor process whose data comes from a source: `sim` (the flight simulator
-// along a scenario) or `carmen:FILE` (a recorded CARMEN log replayed at its recorded pace);
-// real devices come later.
+// along a scenario), `carmen:FILE` (a recorded CARMEN log replayed at its recorded pace) or
+// `mcap:FILE` (an MCAP recording replayed at its log_time spacing); real devices come later.
 #pragma once
 
 #include <cstddef>
@@ -16,17 +16,19 @@
 namespace uavslam::process {
 
 struct SimSourceOptions {
-  std::string source = "sim";  // "sim" or "carmen:FILE"
+  std::string source = "sim";  // "sim", "carmen:FILE" or "mcap:FILE"
   std::string scenario = "config/scenarios/demo.yaml";
   double rate = 1.0;             // times real time
   int wait_for_subscribers = 0;  // hold the first sample until this many readers have matched
   double duration = 0.0;         // s of the flight to publish from its start; 0: all of it
   double start_at = 0.0;  // system-clock time (s since the epoch) the flight starts; 0: when ready
-  std::size_t max_scans = 0;  // carmen: replay only this many scans of the log; 0: all of them
+  std::size_t max_scans = 0;  // carmen, mcap: replay only this many scans; 0: all of them
 };
 
 // The log of a `carmen:FILE` source; nullopt for `sim`.
 std::optional<std::string> carmen_log_path(const SimSourceOptions& options);
+// The recording of an `mcap:FILE` source; nullopt for the others.
+std::optional<std::string> mcap_log_path(const SimSourceOptions& options);
 
 // Registers --source, --scenario, --rate, --wait-for-subscribers, --duration, --start-at,
 // --max-scans.

@@ -6,11 +6,15 @@
 // ahead of the lidar_driver's scan on the shared --start-at timeline (CarmenReplay.hpp); and the
 // laser pose itself (x, y, heading) as `odom` at the same stamp, for a matcher whose SLAM config
 // takes the odometry as its motion prior. The laser's, not the robot's: over DDS the scan's frame
-// is the laser (the scan message carries no mount).
+// is the laser (the scan message carries no mount). Source `mcap:FILE`: the `imu` (or
+// `VEHICLE/imu`) channel of an MCAP recording, as recorded, at its log_time spacing (or `--rate`
+// times faster) on the file's timeline, which the lidar_driver replaying the same file shares.
 #include <chrono>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <string>
+#include <variant>
 
 #include <msg/ImuPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
@@ -18,6 +22,7 @@
 
 #include "common/CarmenReplay.hpp"
 #include "common/IncompatibleQos.hpp"
+#include "common/McapReplay.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/PacedStream.hpp"
 #include "common/ReaderGrace.hpp"
@@ -27,6 +32,8 @@
 #include "core/Heading.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/Participant.hpp"
+#include "dds/RecordedMessageStream.hpp"
+#include "dds/SimulatedSensorMessages.hpp"
 #include "dds/Topics.hpp"
 #include "dds/Writer.hpp"
 #include "io/CarmenScanStream.hpp"
@@ -49,14 +56,13 @@ int publish_imu(const process::NodeOptions& node, const process::SimSourceOption
             << scenario.imu.rate_hz * o.rate << " Hz (domain " << node.domain << ")\n";
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "imu_bridge")) return 1;
-  const dds::Source source{"imu", node.vehicle};
   std::uint64_t seq = 0;
   process::QosWatch qos("imu_bridge");
   const process::StreamCounts counts = process::publish_paced<ImuSample>(
       o, simulator.start_time(), [&](ImuSample& sample) { return simulator.next_imu(sample); },
       [&](const ImuSample& sample) {
         qos.output(writer);
-        return writer.write(dds::to_msg(sample, seq++, source));
+        return writer.write(dds::simulated_imu_message(sample, seq++, node.vehicle));
       });
   std::cerr << "imu_bridge: published " << counts.published << " samples, " << counts.missed
             << " overdue and skipped" << (process::stop_requested() ? " (stopped)" : "") << "\n";
@@ -124,9 +130,54 @@ int replay_odometry(const process::NodeOptions& node, const process::SimSourceOp
   return qos.exit_code();
 }
 
+// The recording's `imu` channel; with --max-scans its scans are read too, to end where the
+// lidar_driver's replay of the same file ends.
+std::set<std::string> recorded_imu_topics(const process::NodeOptions& node,
+                                          const process::SimSourceOptions& o) {
+  std::set<std::string> topics = process::recorded_topics(node.vehicle, dds::kImuTopic);
+  if (o.max_scans > 0) {
+    const std::set<std::string> scans = process::recorded_topics(node.vehicle, dds::kScanTopic);
+    topics.insert(scans.begin(), scans.end());
+  }
+  return topics;
+}
+
+int replay_recorded_imu(const process::NodeOptions& node, const process::SimSourceOptions& o,
+                        const std::string& log_path) {
+  // A missing, foreign or unreadable file: FileError naming it, exit 2.
+  dds::RecordedMessageStream stream(log_path, recorded_imu_topics(node, o));
+  dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
+                               "imu_bridge");
+  const std::string topic = dds::topic_name(node.vehicle, dds::kImuTopic);
+  dds::Writer<msg::ImuPubSubType> writer(participant, topic,
+                                         node.profile(dds::kImuTopic, "sensor_writer"));
+  std::cerr << "imu_bridge: publishing " << topic << " from " << log_path << " at " << o.rate
+            << "x the recorded rate (domain " << node.domain << ")\n";
+
+  if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "imu_bridge")) return 1;
+  process::QosWatch qos("imu_bridge");
+  const process::ReplayCounts counts =
+      process::replay_recorded(o, stream, "imu_bridge", [&](const dds::RecordedMessage& message) {
+        const auto* sample = std::get_if<msg::Imu>(&message.sample);
+        if (!sample) return false;
+        qos.output(writer);
+        return writer.write(*sample);
+      });
+  std::cerr << "imu_bridge: published " << counts.published << " samples of " << log_path << ", "
+            << stream.malformed() << " malformed and " << stream.skipped()
+            << " foreign messages skipped, " << counts.late << " published late (> 0.25 s)"
+            << (process::stop_requested() ? " (stopped)" : "") << "\n";
+  const bool replayed = process::report_replay_end(stream, counts, "imu", "imu_bridge");
+  process::give_readers_the_last_samples();
+  return replayed ? qos.exit_code() : 1;
+}
+
 int publish(const process::NodeOptions& node, const process::SimSourceOptions& o) {
   if (const std::optional<std::string> log_path = process::carmen_log_path(o)) {
     return replay_odometry(node, o, *log_path);
+  }
+  if (const std::optional<std::string> log_path = process::mcap_log_path(o)) {
+    return replay_recorded_imu(node, o, *log_path);
   }
   return publish_imu(node, o);
 }
@@ -138,7 +189,8 @@ int main(int argc, char** argv) {
   CLI::App app{
       "imu_bridge: publishes the `imu` topic (source sim: the flight simulator; source "
       "carmen:FILE: the odometry heading of each laser scan of a CARMEN log as its orientation, "
-      "and the laser's odometry pose as the `odom` topic at the same stamp)"};
+      "and the laser's odometry pose as the `odom` topic at the same stamp; source mcap:FILE: "
+      "the `imu` channel of an MCAP recording, at its log_time spacing)"};
   uavslam::process::NodeOptions node;
   uavslam::process::SimSourceOptions source;
   uavslam::process::add_node_options(app, node);

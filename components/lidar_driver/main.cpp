@@ -3,17 +3,21 @@
 // simulator's true pose at every published scan (TUM), for evaluating the run afterwards.
 // Source `carmen:FILE`: every laser scan of a CARMEN log, in file order, at the recorded pace (or
 // `--rate` times faster), stamped on the log's timeline (io/CarmenTimeline.hpp).
+// Source `mcap:FILE`: the `scan` (or `VEHICLE/scan`) channel of an MCAP recording, each message as
+// it was recorded, at its log_time spacing (or `--rate` times faster; McapReplay.hpp).
 #include <chrono>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <variant>
 
 #include <msg/LaserScanPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
 #include "common/CarmenReplay.hpp"
 #include "common/IncompatibleQos.hpp"
+#include "common/McapReplay.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/PacedStream.hpp"
 #include "common/ReaderGrace.hpp"
@@ -22,12 +26,13 @@
 #include "common/StopRequest.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/Participant.hpp"
+#include "dds/RecordedMessageStream.hpp"
+#include "dds/SimulatedSensorMessages.hpp"
 #include "dds/Topics.hpp"
 #include "dds/Writer.hpp"
 #include "io/CarmenScanStream.hpp"
 #include "io/ScenarioFile.hpp"
 #include "io/TumFile.hpp"
-#include "sim/Angles.hpp"
 #include "sim/FlightSimulator.hpp"
 
 namespace uavslam {
@@ -37,8 +42,6 @@ int publish_scans(const process::NodeOptions& node, const process::SimSourceOpti
                   const std::string& groundtruth_path) {
   const sim::Scenario scenario = io::load_scenario(o.scenario);
   sim::FlightSimulator simulator(scenario);
-  const double fov = sim::deg_to_rad(scenario.lidar.fov_deg);
-  const double increment = fov / (scenario.lidar.beams - 1);
 
   dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
                                "lidar_driver");
@@ -49,7 +52,6 @@ int publish_scans(const process::NodeOptions& node, const process::SimSourceOpti
             << scenario.lidar.rate_hz * o.rate << " Hz (domain " << node.domain << ")\n";
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
-  const dds::Source source{"laser", node.vehicle};
   std::vector<Pose> truth;
   process::QosWatch qos("lidar_driver");
   const process::StreamCounts counts = process::publish_paced<Scan>(
@@ -57,7 +59,7 @@ int publish_scans(const process::NodeOptions& node, const process::SimSourceOpti
       [&](const Scan& scan) {
         qos.output(writer);
         if (!groundtruth_path.empty()) truth.push_back(simulator.ground_truth_at(scan.stamp));
-        return writer.write(dds::to_msg(scan, -fov / 2.0, increment, source));
+        return writer.write(dds::simulated_scan_message(scan, scenario.lidar, node.vehicle));
       });
   if (!groundtruth_path.empty()) io::write_tum(groundtruth_path, truth);
   std::cerr << "lidar_driver: published " << counts.published << " scans, " << counts.missed
@@ -102,15 +104,48 @@ int replay_scans(const process::NodeOptions& node, const process::SimSourceOptio
   return qos.exit_code();
 }
 
+int replay_recorded_scans(const process::NodeOptions& node, const process::SimSourceOptions& o,
+                          const std::string& log_path) {
+  // A missing, foreign or unreadable file: FileError naming it, exit 2.
+  dds::RecordedMessageStream stream(log_path,
+                                    process::recorded_topics(node.vehicle, dds::kScanTopic));
+  dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
+                               "lidar_driver");
+  const std::string topic = dds::topic_name(node.vehicle, dds::kScanTopic);
+  dds::Writer<msg::LaserScanPubSubType> writer(participant, topic,
+                                               node.profile(dds::kScanTopic, "sensor_writer"));
+  std::cerr << "lidar_driver: publishing " << topic << " from " << log_path << " at " << o.rate
+            << "x the recorded rate (domain " << node.domain << ")\n";
+
+  if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
+  process::QosWatch qos("lidar_driver");
+  const process::ReplayCounts counts =
+      process::replay_recorded(o, stream, "lidar_driver", [&](const dds::RecordedMessage& message) {
+        const auto* scan = std::get_if<msg::LaserScan>(&message.sample);
+        if (!scan) return false;
+        qos.output(writer);
+        return writer.write(*scan);
+      });
+  std::cerr << "lidar_driver: published " << counts.published << " scans of " << log_path << ", "
+            << stream.malformed() << " malformed and " << stream.skipped()
+            << " foreign messages skipped, " << counts.late << " published late (> 0.25 s)"
+            << (process::stop_requested() ? " (stopped)" : "") << "\n";
+  const bool replayed = process::report_replay_end(stream, counts, "scan", "lidar_driver");
+  process::give_readers_the_last_samples();
+  return replayed ? qos.exit_code() : 1;
+}
+
 int publish(const process::NodeOptions& node, const process::SimSourceOptions& o,
             const std::string& groundtruth_path) {
-  const std::optional<std::string> log_path = process::carmen_log_path(o);
-  if (!log_path) return publish_scans(node, o, groundtruth_path);
+  const std::optional<std::string> carmen = process::carmen_log_path(o);
+  const std::optional<std::string> mcap = process::mcap_log_path(o);
+  if (!carmen && !mcap) return publish_scans(node, o, groundtruth_path);
   if (!groundtruth_path.empty()) {
-    std::cerr << "lidar_driver: --groundtruth needs --source sim (a log has no ground truth)\n";
+    std::cerr << "lidar_driver: --groundtruth needs --source sim (a log's ground truth is its "
+                 "own)\n";
     return 2;
   }
-  return replay_scans(node, o, *log_path);
+  return carmen ? replay_scans(node, o, *carmen) : replay_recorded_scans(node, o, *mcap);
 }
 
 }  // namespace
@@ -119,7 +154,8 @@ int publish(const process::NodeOptions& node, const process::SimSourceOptions& o
 int main(int argc, char** argv) {
   CLI::App app{
       "lidar_driver: publishes the `scan` topic (source sim: the flight simulator; source "
-      "carmen:FILE: the laser scans of a CARMEN log, replayed at the recorded pace)"};
+      "carmen:FILE: the laser scans of a CARMEN log, replayed at the recorded pace; source "
+      "mcap:FILE: the `scan` channel of an MCAP recording, at its log_time spacing)"};
   uavslam::process::NodeOptions node;
   uavslam::process::SimSourceOptions source;
   uavslam::process::add_node_options(app, node);

@@ -1,15 +1,25 @@
 #include "LogInput.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <random>
+#include <set>
+#include <variant>
 
 #include "SimulatedFlight.hpp"
 #include "core/Heading.hpp"
+#include "dds/Conversions.hpp"
+#include "dds/MessageScanGeometry.hpp"
+#include "dds/RecordedMessageStream.hpp"
+#include "dds/SimulatedSensorMessages.hpp"
+#include "dds/Topics.hpp"
 #include "io/CarmenScanStream.hpp"
 #include "io/FileError.hpp"
+#include "io/McapReader.hpp"
 
 namespace uavslam::cli {
 namespace {
@@ -139,7 +149,167 @@ class SimulatedInput : public LogInput {
   StampRange stamps_;
 };
 
+// What an MCAP recording holds, before reading it: its channels' topics and how many messages
+// each has (from the summary; a file without one, cut short, is walked once without decoding).
+struct McapContents {
+  std::map<std::string, std::uint64_t> messages;  // by topic
+  bool counts_known = false;
+};
+
+McapContents survey_mcap(const std::string& path) {
+  McapContents contents;
+  io::McapIndexedReader indexed(path);
+  if (indexed.has_summary()) {
+    for (const auto& [id, channel] : indexed.channels()) {
+      std::uint64_t count = 0;
+      if (indexed.statistics()) {
+        const auto& counts = indexed.statistics()->channel_message_counts;
+        const auto found = counts.find(id);
+        count = found == counts.end() ? 0 : found->second;
+      }
+      contents.messages[channel.topic] += count;
+    }
+    contents.counts_known = indexed.statistics().has_value();
+    return contents;
+  }
+  io::McapStreamReader stream(path);
+  io::mcap::Message message;
+  while (stream.next(message)) ++contents.messages[stream.channels().at(message.channel_id).topic];
+  for (const auto& [id, channel] : stream.channels()) contents.messages[channel.topic] += 0;
+  if (contents.messages.empty() && !stream.report().complete) {
+    throw io::file_error(path, stream.report().problem);
+  }
+  contents.counts_known = true;
+  return contents;
+}
+
+// "" when the file has a bare `scan` channel, else the prefix "V/" of its single "V/scan" one.
+std::string vehicle_prefix(const std::string& path, const McapContents& contents) {
+  const std::string scan = dds::kScanTopic;
+  if (contents.messages.count(scan)) return "";
+  std::vector<std::string> prefixes;
+  for (const auto& [topic, count] : contents.messages) {
+    if (topic.size() > scan.size() + 1 &&
+        topic.compare(topic.size() - scan.size() - 1, std::string::npos, "/" + scan) == 0) {
+      prefixes.push_back(topic.substr(0, topic.size() - scan.size()));
+    }
+  }
+  if (prefixes.size() == 1) return prefixes.front();
+  std::string topics;
+  for (const auto& [topic, count] : contents.messages)
+    topics += (topics.empty() ? "" : ", ") + topic;
+  throw io::file_error(path, (prefixes.empty() ? "no scan channel" : "several vehicles' scans") +
+                                 std::string(" (channels: ") + (topics.empty() ? "none" : topics) +
+                                 "): nothing to map");
+}
+
+class McapInput : public LogInput {
+ public:
+  McapInput(const std::string& path, std::shared_ptr<const ScanGeometry> geometry,
+            const std::string& prefix, std::size_t expected)
+      : stream_(path, {prefix + dds::kScanTopic, prefix + dds::kImuTopic,
+                       prefix + dds::kGroundTruthTopic}),
+        geometry_(std::move(geometry)),
+        expected_(expected) {}
+
+  std::optional<LogEvent> next() override {
+    while (ready_.empty() && !ended_) read_one();
+    if (ready_.empty()) return std::nullopt;
+    LogEvent event = std::move(ready_.front());
+    ready_.pop_front();
+    return event;
+  }
+  std::size_t expected_scans() const override { return expected_; }
+  std::size_t malformed() const override { return stream_.malformed() + stream_.skipped(); }
+  std::vector<std::string> take_problems() override { return stream_.take_new_problems(); }
+  double data_seconds() const override { return stamps_.seconds(); }
+  std::string damage() const override { return stream_.damage(); }
+
+ private:
+  // One message into the events; a scan waits for the next message, which may be its truth.
+  void read_one() {
+    std::optional<dds::RecordedMessage> message = stream_.next();
+    if (!message) {
+      release_scan();
+      ended_ = true;
+      return;
+    }
+    if (const auto* imu = std::get_if<msg::Imu>(&message->sample)) {
+      release_scan();
+      LogEvent event(LogEvent::Kind::Imu);
+      event.imu = dds::from_msg(*imu);
+      ready_.push_back(std::move(event));
+    } else if (const auto* scan = std::get_if<msg::LaserScan>(&message->sample)) {
+      release_scan();
+      take_scan(*scan);
+    } else if (const auto* pose = std::get_if<msg::PoseWithCovarianceStamped>(&message->sample)) {
+      take_truth(dds::from_msg(*pose));
+    }
+  }
+
+  void take_scan(const msg::LaserScan& message) {
+    LogEvent event(LogEvent::Kind::Scan);
+    event.scan = dds::from_msg(message, geometry_ ? geometry_ : geometries_.for_message(message));
+    event.output_stamp = event.scan.stamp;
+    stamps_.add(event.scan.stamp);
+    scan_ = std::move(event);
+    if (truth_ && same_stamp(truth_->stamp, scan_->scan.stamp)) {
+      attach_truth(*truth_);
+      release_scan();
+    }
+    truth_.reset();
+  }
+
+  void take_truth(const Pose& truth) {
+    if (scan_ && same_stamp(truth.stamp, scan_->scan.stamp)) {
+      attach_truth(truth);
+      release_scan();
+      return;
+    }
+    release_scan();
+    truth_ = truth;
+  }
+
+  void attach_truth(const Pose& truth) {
+    scan_->truth = truth;
+    scan_->start_hint = truth.position;
+  }
+
+  void release_scan() {
+    if (scan_) ready_.push_back(std::move(*scan_));
+    scan_.reset();
+  }
+
+  static bool same_stamp(double a, double b) { return std::abs(a - b) < 1e-6; }
+
+  dds::RecordedMessageStream stream_;
+  std::shared_ptr<const ScanGeometry> geometry_;
+  dds::MessageScanGeometry geometries_;
+  std::size_t expected_;
+  std::deque<LogEvent> ready_;
+  std::optional<LogEvent> scan_;  // the last scan read, until its truth or another message comes
+  std::optional<Pose> truth_;     // a truth read before its scan
+  bool ended_ = false;
+  StampRange stamps_;
+};
+
 }  // namespace
+
+std::unique_ptr<LogInput> open_mcap_input(const std::string& path,
+                                          std::shared_ptr<const ScanGeometry> geometry) {
+  const McapContents contents = survey_mcap(path);
+  const std::string prefix = vehicle_prefix(path, contents);
+  const std::string imu = prefix + dds::kImuTopic;
+  const std::uint64_t scans = contents.messages.at(prefix + dds::kScanTopic);
+  if (contents.messages.count(imu) == 0) {
+    throw io::file_error(path, "its " + std::to_string(scans) + " scans (channel " + prefix +
+                                   dds::kScanTopic + ") come with no " + imu +
+                                   " channel: nothing to orient them (the pipeline takes each "
+                                   "scan's orientation from the IMU)");
+  }
+  return std::make_unique<McapInput>(path, std::move(geometry), prefix,
+                                     contents.counts_known ? scans : 0);
+}
 
 std::unique_ptr<LogInput> open_carmen_input(const std::string& path, HeadingJitter jitter) {
   return std::make_unique<CarmenInput>(path, jitter);

@@ -1,7 +1,7 @@
 // A flight's sensor data as the pipeline takes it, in time order, one event at a time, whatever
-// it was read from: a CARMEN log (streamed, however large), a simulated flight, or (later) an
-// MCAP recording. The offline mapper reads its input twice (real-time pass, dense pass), so an
-// input is opened anew for each pass.
+// it was read from: a CARMEN log (streamed, however large), a simulated flight, or an MCAP
+// recording (streamed too). The offline mapper reads its input twice (real-time pass, dense pass),
+// so an input is opened anew for each pass.
 #pragma once
 
 #include <cstddef>
@@ -41,6 +41,9 @@ class LogInput {
   virtual std::vector<std::string> take_problems() { return {}; }
   // Seconds of data so far (last stamp - first stamp).
   virtual double data_seconds() const = 0;
+  // Why the input ended before the end of its file (a recording cut short: where and why), ""
+  // when it did not. Known once next() returned nullopt.
+  virtual std::string damage() const { return ""; }
 };
 
 using LogInputFactory = std::function<std::unique_ptr<LogInput>()>;
@@ -57,6 +60,17 @@ struct HeadingJitter {
 // brings the robot's odometry heading as the orientation (an IMU sample) and its odometry
 // position, before the scan itself. Throws io::FileError when the file cannot be opened.
 std::unique_ptr<LogInput> open_carmen_input(const std::string& path, HeadingJitter jitter = {});
+
+// The `scan`, `imu` and (when there) `ground_truth` channels of an MCAP recording (the convention
+// of dds/McapChannels.hpp; with a vehicle prefix, "uav1/scan", when the file has only that
+// vehicle's) in log-time order: IMU samples and scans as the pipeline takes them, each scan with
+// the true pose recorded at its stamp as its truth and start. `geometry`: the sensor's (mount,
+// mirror); null: each scan's beam layout as a planar scanner at the body origin
+// (dds::MessageScanGeometry). A file cut short is read up to its damage (damage() says where).
+// io::FileError naming the file when it cannot be opened, is not MCAP, holds no whole message, or
+// has scans but no IMU channel (nothing to orient them).
+std::unique_ptr<LogInput> open_mcap_input(const std::string& path,
+                                          std::shared_ptr<const ScanGeometry> geometry);
 
 struct SensorLog;
 // A flight simulated beforehand (simulate_sensors), with its ground truth; the passes share it.

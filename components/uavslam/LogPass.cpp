@@ -4,6 +4,7 @@
 #include <ostream>
 
 #include "common/StopRequest.hpp"
+#include "core/Heading.hpp"
 #include "core/OdometryPrior.hpp"
 #include "core/ScanProjection.hpp"
 #include "core/SlamPipeline.hpp"
@@ -108,6 +109,16 @@ double PassResult::pipeline_seconds() const {
   return ms / 1e3;
 }
 
+std::vector<eval::PlanarStamped> PassResult::planar_estimate() const {
+  std::vector<eval::PlanarStamped> poses;
+  poses.reserve(posed.size());
+  for (const PosedScan& s : posed) {
+    poses.push_back(
+        {s.output_stamp, s.pose.position.x(), s.pose.position.y(), heading_of(s.pose.orientation)});
+  }
+  return poses;
+}
+
 std::vector<Pose> PassResult::ground_truth() const {
   std::vector<Pose> poses;
   for (const PosedScan& s : posed) {
@@ -138,6 +149,7 @@ PassResult run_pass(LogInput& input, const PassOptions& options, ProgressBar* pr
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
   result.data_seconds = input.data_seconds();
   result.malformed = input.malformed();
+  result.input_damage = input.damage();
   if (progress) progress->finish(result.scans_in);
   return result;
 }

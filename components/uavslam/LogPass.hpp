@@ -15,6 +15,7 @@
 #include "core/DenseCloud.hpp"
 #include "core/OccupancyOctree.hpp"
 #include "core/SlamConfig.hpp"
+#include "eval/Relation.hpp"
 
 namespace uavslam::cli {
 
@@ -48,11 +49,14 @@ struct PassResult {
   double wall_seconds = 0.0;  // the whole pass: pipeline and dense products
   double data_seconds = 0.0;
   bool stopped_early = false;
+  std::string input_damage;  // LogInput::damage(): the input was cut short
 
   double real_time_factor() const { return wall_seconds > 0 ? data_seconds / wall_seconds : 0; }
   double pipeline_seconds() const;  // the matcher's share of wall_seconds
   std::vector<Pose> estimate() const;
   std::vector<Pose> ground_truth() const;  // where known, at the posed scans
+  // "timestamp x y theta" per posed scan (the output stamps), for `uavslam eval --relations`.
+  std::vector<eval::PlanarStamped> planar_estimate() const;
 };
 
 // Runs until the input ends or a stop is requested (Ctrl-C: stopped_early). Problems the input

@@ -19,7 +19,6 @@
 #include "LogPass.hpp"
 #include "ProgressBar.hpp"
 #include "SimulatedFlight.hpp"
-#include "core/Heading.hpp"
 #include "eval/Percentile.hpp"
 #include "eval/TrajectoryMetrics.hpp"
 #include "io/FileError.hpp"
@@ -29,6 +28,7 @@
 #include "io/RelationsFile.hpp"
 #include "io/ScenarioFile.hpp"
 #include "io/TumFile.hpp"
+#include "sim/LidarGeometry.hpp"
 #include "sim/World.hpp"
 
 namespace uavslam::cli {
@@ -37,11 +37,13 @@ namespace {
 struct OfflineOptions {
   std::string carmen;
   std::string scenario;
+  std::string log;     // an MCAP recording
+  std::string sensor;  // the scenario whose sensor (and world) the recording's scans are of
   std::string out;
   std::string config;
   std::vector<std::string> overrides;
   double voxel = 0.01;
-  double octomap_resolution = 0.05;
+  double octomap_resolution = 0.1;
   bool skip_realtime = false;
   bool quiet = false;
 };
@@ -62,7 +64,24 @@ struct Input {
   bool planar_estimate = false;     // CARMEN: also estimate.txt for `uavslam eval --relations`
 };
 
+// An MCAP recording: with --sensor, its scans are of that scenario's LiDAR (mount, mirror) and its
+// world gives the cloud's distance to the true surfaces; without, each scan's beam layout is a
+// planar scanner at the body origin.
+Input open_log_input(const OfflineOptions& o) {
+  std::shared_ptr<const ScanGeometry> geometry;
+  std::optional<sim::World> world;
+  if (!o.sensor.empty()) {
+    const sim::Scenario scenario = io::load_scenario(o.sensor);
+    geometry = sim::make_scan_geometry(scenario.lidar);
+    world.emplace(scenario.world);
+  }
+  open_mcap_input(o.log, geometry);  // refuses a file it cannot map before any output is made
+  return {[path = o.log, geometry] { return open_mcap_input(path, geometry); }, o.log,
+          std::move(world), false};
+}
+
 Input open_input(const OfflineOptions& o) {
+  if (!o.log.empty()) return open_log_input(o);
   if (!o.carmen.empty()) {
     return {[path = o.carmen] { return open_carmen_input(path); }, o.carmen, std::nullopt, true};
   }
@@ -129,16 +148,6 @@ nlohmann::json pass_json(const PassResult& pass) {
   return j;
 }
 
-std::vector<eval::PlanarStamped> planar(const std::vector<PosedScan>& posed) {
-  std::vector<eval::PlanarStamped> poses;
-  poses.reserve(posed.size());
-  for (const PosedScan& s : posed) {
-    poses.push_back(
-        {s.output_stamp, s.pose.position.x(), s.pose.position.y(), heading_of(s.pose.orientation)});
-  }
-  return poses;
-}
-
 void write_products(const std::filesystem::path& out, const PassResult& dense,
                     const std::vector<DensePoint>& cloud, bool planar_estimate) {
   io::write_ply((out / "cloud.ply").string(), cloud);
@@ -146,7 +155,7 @@ void write_products(const std::filesystem::path& out, const PassResult& dense,
   io::write_bt((out / "map.bt").string(), dense.occupancy->pruned_tree());
   io::write_tum((out / "estimate.tum").string(), dense.estimate());
   if (planar_estimate)
-    io::write_planar_estimate((out / "estimate.txt").string(), planar(dense.posed));
+    io::write_planar_estimate((out / "estimate.txt").string(), dense.planar_estimate());
 }
 
 nlohmann::json make_report(const Input& input, const PassResult& dense,
@@ -154,6 +163,7 @@ nlohmann::json make_report(const Input& input, const PassResult& dense,
   nlohmann::json report;
   report["input"] = input.name;
   report["stopped_early"] = dense.stopped_early || (realtime && realtime->stopped_early);
+  if (!dense.input_damage.empty()) report["input_damage"] = dense.input_damage;
   report["malformed_records"] = dense.malformed;
   report["offline"] = pass_json(dense);
   report["offline"]["cloud"] = {{"points", cloud.size()},
@@ -191,7 +201,11 @@ void print_pass(std::ostream& out, const char* name, const nlohmann::json& j) {
 
 void print_report(std::ostream& out, const nlohmann::json& r) {
   out << "uavslam offline: " << r["input"].get<std::string>()
-      << (r["stopped_early"].get<bool>() ? " (stopped early)" : "") << "\n";
+      << (r["stopped_early"].get<bool>() ? " (stopped early)" : "")
+      << (r.contains("input_damage") ? " (cut short: the complete part mapped)" : "") << "\n";
+  if (r.contains("input_damage")) {
+    out << "  input cut short   " << r["input_damage"].get<std::string>() << "\n";
+  }
   print_pass(out, "offline (dense)  ", r["offline"]);
   if (r.contains("realtime")) print_pass(out, "real-time        ", r["realtime"]);
   const nlohmann::json& cloud = r["offline"]["cloud"];
@@ -212,8 +226,13 @@ void print_report(std::ostream& out, const nlohmann::json& r) {
 
 int run_offline(const OfflineOptions& o) {
   const SlamConfig config = load_config(o.config, o.overrides);
-  if (!o.quiet)
-    std::cerr << "uavslam offline: reading " << (o.carmen.empty() ? o.scenario : o.carmen) << "\n";
+  if (!o.quiet) {
+    std::cerr << "uavslam offline: reading "
+              << (!o.log.empty()     ? o.log
+                  : o.carmen.empty() ? o.scenario
+                                     : o.carmen)
+              << "\n";
+  }
   const Input input = open_input(o);
   std::filesystem::create_directories(o.out);
   PassOptions dense_options{offline_variant(config), o.voxel,
@@ -236,7 +255,8 @@ int run_offline(const OfflineOptions& o) {
   print_report(std::cout, report);
   std::cout << "  outputs           " << o.out << "/{cloud.ply, cloud.pcd, map.bt, estimate.tum"
             << (input.planar_estimate ? ", estimate.txt" : "") << ", report.json}\n";
-  return report["stopped_early"].get<bool>() ? 130 : 0;
+  if (report["stopped_early"].get<bool>()) return 130;
+  return report.contains("input_damage") ? 1 : 0;
 }
 
 }  // namespace
@@ -257,7 +277,20 @@ void add_offline_command(CLI::App& app, int& exit_code) {
                    "scenario YAML, flown in the simulator first (its world gives the cloud's "
                    "distance to the true surfaces)")
       ->check(CLI::ExistingFile);
+  CLI::Option* log =
+      source
+          ->add_option("--log", options->log,
+                       "MCAP recording (uavslam simulate --log, the recorder): its scan, imu and, "
+                       "when there, ground_truth channels; a file cut short maps its complete "
+                       "part and exits 1")
+          ->check(CLI::ExistingFile);
   source->require_option(1);
+  cmd->add_option("--sensor", options->sensor,
+                  "with --log: the scenario YAML whose LiDAR recorded the scans (mount, floor "
+                  "mirror; its world gives the cloud's distance to the true surfaces); without "
+                  "it each scan is a planar scanner at the body origin")
+      ->check(CLI::ExistingFile)
+      ->needs(log);
   cmd->add_option("--out", options->out, "output folder (created)")->required();
   cmd->add_option("--config", options->config,
                   "SLAM parameters YAML of the real-time pass; the offline pass uses it with "
@@ -271,7 +304,7 @@ void add_offline_command(CLI::App& app, int& exit_code) {
                   "voxel; 0 keeps every point (default 0.01)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--octomap-resolution", options->octomap_resolution,
-                  "leaf size of OUT/map.bt in m (default 0.05)")
+                  "leaf size of OUT/map.bt in m (default 0.1, as the map server)")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--skip-realtime", options->skip_realtime,
                 "do not run the real-time pass (no comparison in the report)");

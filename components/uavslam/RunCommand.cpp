@@ -20,7 +20,6 @@
 #include "LogInput.hpp"
 #include "LogPass.hpp"
 #include "RunSummary.hpp"
-#include "core/Heading.hpp"
 #include "eval/Percentile.hpp"
 #include "io/FileError.hpp"
 #include "io/PlyFile.hpp"
@@ -38,16 +37,6 @@ struct RunOptions {
   bool quiet = false;
   HeadingJitter jitter;
 };
-
-std::vector<eval::PlanarStamped> planar(const std::vector<PosedScan>& posed) {
-  std::vector<eval::PlanarStamped> poses;
-  poses.reserve(posed.size());
-  for (const PosedScan& s : posed) {
-    poses.push_back(
-        {s.output_stamp, s.pose.position.x(), s.pose.position.y(), heading_of(s.pose.orientation)});
-  }
-  return poses;
-}
 
 nlohmann::json to_json(const PassResult& run, const std::string& log_path,
                        const eval::SampleStats& ms) {
@@ -95,7 +84,7 @@ void print_summary(std::ostream& out, const PassResult& run, const std::string& 
 void write_outputs(const std::filesystem::path& out, const PassResult& run,
                    const nlohmann::json& summary) {
   std::filesystem::create_directories(out);
-  io::write_planar_estimate((out / "estimate.txt").string(), planar(run.posed));
+  io::write_planar_estimate((out / "estimate.txt").string(), run.planar_estimate());
   io::write_tum((out / "estimate.tum").string(), run.estimate());
   io::write_ply((out / "map.ply").string(), run.map);
   const std::string json_path = (out / "summary.json").string();

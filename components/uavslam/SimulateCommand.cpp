@@ -25,6 +25,7 @@ struct SimulateOptions {
   std::string out;
   std::string config;
   std::vector<std::string> overrides;
+  std::string log;  // MCAP recording of the flight, when given
   bool quiet = false;
 };
 
@@ -61,6 +62,7 @@ int run_simulate(const SimulateOptions& o) {
   const SlamConfig config = load_config(o.config, o.overrides);
   if (!o.quiet) std::cerr << "simulating " << scenario.name << " ...\n";
   const SensorLog log = simulate_sensors(scenario);
+  if (!o.log.empty()) write_flight_log(o.log, scenario, log);
   const SlamRun run = run_slam(log, config, [&](std::size_t done, std::size_t total) {
     if (!o.quiet) report_progress("SLAM", done, total);
   });
@@ -68,7 +70,8 @@ int run_simulate(const SimulateOptions& o) {
   write_outputs(o.out, run, log.ground_truth, to_json(summary, config));
   print_summary(std::cout, summary);
   std::cout << "  outputs           " << o.out
-            << "/{estimate.tum, groundtruth.tum, map.ply, scans.csv, summary.json}\n";
+            << "/{estimate.tum, groundtruth.tum, map.ply, scans.csv, summary.json}"
+            << (o.log.empty() ? "" : ", " + o.log) << "\n";
   return run.stopped_early ? 130 : 0;
 }
 
@@ -105,6 +108,10 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--set", options->overrides,
                   "override one SLAM parameter, e.g. --set icp.iterations=12 (repeatable)");
+  cmd->add_option("--log", options->log,
+                  "also write the flight's sensor data as an MCAP recording: channels scan, imu "
+                  "and ground_truth, as the sensor processes publish them (replay it with "
+                  "lidar_driver/imu_bridge --source mcap:FILE, map it with uavslam offline --log)");
   cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
   cmd->callback([options, &exit_code] { exit_code = run_simulate(*options); });
 }

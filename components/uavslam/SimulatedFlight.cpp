@@ -1,8 +1,20 @@
 #include "SimulatedFlight.hpp"
 
 #include <chrono>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include <msg/ImuPubSubTypes.h>
+#include <msg/LaserScanPubSubTypes.h>
+#include <msg/PosePubSubTypes.h>
 
 #include "common/StopRequest.hpp"
+#include "dds/McapChannels.hpp"
+#include "dds/RecordedMessages.hpp"
+#include "dds/SimulatedSensorMessages.hpp"
+#include "dds/Topics.hpp"
+#include "io/McapWriter.hpp"
 #include "sim/FlightSimulator.hpp"
 
 namespace uavslam::cli {
@@ -19,6 +31,52 @@ SensorLog simulate_sensors(const sim::Scenario& scenario) {
     log.scans.push_back(std::move(scan));
   }
   return log;
+}
+
+namespace {
+
+// One channel of the recording with its message count (the MCAP sequence number).
+template <typename PubSubType>
+class RecordedChannel {
+ public:
+  RecordedChannel(io::McapWriter& writer, const std::string& topic)
+      : writer_(writer), id_(dds::add_dds_channel(writer, topic, dds::schema_name<PubSubType>())) {}
+
+  void write(double stamp, const typename PubSubType::type& sample) {
+    const std::vector<std::uint8_t> bytes = dds::to_cdr<PubSubType>(sample);
+    const std::uint64_t time = dds::to_mcap_time(stamp);
+    writer_.write(id_, sequence_++, time, time, bytes.data(), bytes.size());
+  }
+
+ private:
+  io::McapWriter& writer_;
+  std::uint16_t id_;
+  std::uint32_t sequence_ = 0;
+};
+
+}  // namespace
+
+void write_flight_log(const std::string& path, const sim::Scenario& scenario,
+                      const SensorLog& log) {
+  io::McapWriter writer(path);
+  RecordedChannel<msg::LaserScanPubSubType> scans(writer, dds::kScanTopic);
+  RecordedChannel<msg::ImuPubSubType> imu(writer, dds::kImuTopic);
+  RecordedChannel<msg::PoseWithCovarianceStampedPubSubType> truth(writer, dds::kGroundTruthTopic);
+  std::size_t next_imu = 0;
+  const auto write_imu_up_to = [&](double stamp) {
+    for (; next_imu < log.imu.size() && log.imu[next_imu].stamp <= stamp; ++next_imu) {
+      imu.write(log.imu[next_imu].stamp,
+                dds::simulated_imu_message(log.imu[next_imu], next_imu, ""));
+    }
+  };
+  for (std::size_t i = 0; i < log.scans.size(); ++i) {
+    const Scan& scan = log.scans[i];
+    write_imu_up_to(scan.stamp);
+    truth.write(scan.stamp, dds::ground_truth_message(log.ground_truth[i], scan.sequence, i, ""));
+    scans.write(scan.stamp, dds::simulated_scan_message(scan, scenario.lidar, ""));
+  }
+  write_imu_up_to(std::numeric_limits<double>::infinity());
+  writer.close();
 }
 
 SlamRun run_slam(const SensorLog& log, const SlamConfig& config,

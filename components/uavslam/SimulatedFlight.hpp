@@ -5,6 +5,7 @@
 
 #include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/SlamPipeline.hpp"
@@ -20,6 +21,14 @@ struct SensorLog {
 };
 
 SensorLog simulate_sensors(const sim::Scenario& scenario);
+
+// Writes the flight as an MCAP recording (dds/McapChannels.hpp's convention) with the channels
+// `scan` (LaserScan), `imu` (Imu) and `ground_truth` (PoseWithCovarianceStamped, the true body
+// pose at each scan), the messages as lidar_driver and imu_bridge publish them
+// (dds/SimulatedSensorMessages.hpp), in time order: at equal stamps the IMU samples first, then
+// the truth, then the scan, as the pipeline takes them. log_time = publish_time = the stamp.
+// io::FileError when the file cannot be written.
+void write_flight_log(const std::string& path, const sim::Scenario& scenario, const SensorLog& log);
 
 // One scan's diagnostics, as the matcher_status topic will carry them.
 struct ScanTrace {

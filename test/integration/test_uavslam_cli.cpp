@@ -18,6 +18,8 @@
 #include <nlohmann/json.hpp>
 
 #include "TempDirTest.hpp"
+#include "io/McapReader.hpp"
+#include "io/McapWriter.hpp"
 #include "io/OctreeFile.hpp"
 #include "io/PcdFile.hpp"
 #include "io/PlyFile.hpp"
@@ -347,8 +349,10 @@ TEST_F(UavslamCli, OfflineOnACarmenLogAgreesWithRun) {
   const std::string path = write("room.clf", log);
   const std::string config = " --config " + source("config/slam_2d_logs.yaml");
   const CommandResult offline =
-      run("offline --quiet --carmen " + path + config + " --out " + (dir / "offline").string());
+      run("offline --carmen " + path + config + " --out " + (dir / "offline").string());
   ASSERT_EQ(offline.exit_code, 0) << offline.output;
+  // Not a terminal: plain progress lines, the last at 100 %.
+  EXPECT_THAT(offline.output, HasSubstr("100% 8/8 scans")) << offline.output;
   const CommandResult online =
       run("run --quiet --carmen " + path + config + " --out " + (dir / "run").string());
   ASSERT_EQ(online.exit_code, 0) << online.output;
@@ -369,4 +373,119 @@ TEST_F(UavslamCli, OfflineNeedsExactlyOneInput) {
           source("config/scenarios/short.yaml") + " --out " + (dir / "o").string());
   EXPECT_NE(both.exit_code, 0);
   EXPECT_FALSE(fs::exists(dir / "o"));
+}
+
+// The short flight recorded by `uavslam simulate --log` (MCAP: scan, imu, ground_truth), and the
+// simulation's summary.json beside it.
+struct RecordedFlight {
+  std::string log;
+  nlohmann::json summary;
+};
+
+RecordedFlight record_short_flight(const fs::path& dir) {
+  const std::string log = (dir / "short.mcap").string();
+  const CommandResult r =
+      run("simulate --quiet --scenario " + source("config/scenarios/short.yaml") + " --config " +
+          source("config/slam.yaml") + " --out " + (dir / "simulate").string() + " --log " + log);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream json(dir / "simulate" / "summary.json");
+  return {log, nlohmann::json::parse(json, nullptr, false)};
+}
+
+// The recorded flight mapped offline with its sensor: at least as accurate as the real-time pass
+// over the same recording, the cloud on the true surfaces, every simulated scan read back.
+TEST_F(UavslamCli, OfflineMapsARecordedFlight) {
+  const RecordedFlight flight = record_short_flight(dir);
+  ASSERT_FALSE(HasFailure());
+  const fs::path out = dir / "offline";
+  const CommandResult r = run("offline --quiet --log " + flight.log + " --sensor " +
+                              source("config/scenarios/short.yaml") + " --config " +
+                              source("config/slam.yaml") + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream json(out / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(json);
+  const nlohmann::json& offline = report.at("offline");
+  const nlohmann::json& realtime = report.at("realtime");
+  const std::size_t simulated = flight.summary.at("scans").at("in").get<std::size_t>();
+  EXPECT_EQ(simulated, 801u);
+  EXPECT_EQ(offline.at("scans").get<std::size_t>(), simulated);
+  EXPECT_EQ(realtime.at("scans").get<std::size_t>(), simulated);
+  const double offline_ate = offline.at("errors").at("ate_rmse_m").get<double>();
+  const double realtime_ate = realtime.at("errors").at("ate_rmse_m").get<double>();
+  EXPECT_LE(offline_ate, realtime_ate) << r.output;
+  // The real-time pass over the recording is the simulation's run over the same data.
+  EXPECT_NEAR(realtime_ate, flight.summary.at("trajectory_errors").at("ate_rmse_m").get<double>(),
+              1e-9);
+  EXPECT_LT(offline.at("cloud").at("distance_to_true_surfaces").at("mean_m").get<double>(), 0.03)
+      << r.output;
+  EXPECT_FALSE(report.contains("input_damage"));
+}
+
+// A recording cut in the middle (a recorder that was killed): the whole chunks before the cut are
+// mapped, and the report and the exit code (1) say where it stopped.
+TEST_F(UavslamCli, OfflineMapsTheCompletePartOfACutLog) {
+  const RecordedFlight flight = record_short_flight(dir);
+  ASSERT_FALSE(HasFailure());
+  const std::string cut = (dir / "cut.mcap").string();
+  fs::copy_file(flight.log, cut);
+  fs::resize_file(cut, fs::file_size(flight.log) / 2);
+  const fs::path out = dir / "offline";
+  const CommandResult r = run("offline --quiet --skip-realtime --log " + cut + " --sensor " +
+                              source("config/scenarios/short.yaml") + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("cut short"));
+  std::ifstream json(out / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(json);
+  EXPECT_THAT(report.at("input_damage").get<std::string>(),
+              HasSubstr(cut + ": the log stops at byte"));
+  const std::size_t scans = report.at("offline").at("scans").get<std::size_t>();
+  EXPECT_GT(scans, 100u);
+  EXPECT_LT(scans, 801u);
+  EXPECT_EQ(report.at("offline").at("posed").get<std::size_t>(), scans);
+  EXPECT_LT(report.at("offline").at("errors").at("ate_rmse_m").get<double>(), 0.1);
+}
+
+// Copies the recording's `topic` channel alone into `to`.
+void copy_channel(const std::string& from, const std::string& to, const std::string& topic) {
+  uavslam::io::McapStreamReader reader(from);
+  uavslam::io::McapWriter writer(to);
+  uavslam::io::mcap::Message message;
+  std::uint16_t channel = 0;
+  while (reader.next(message)) {
+    const uavslam::io::mcap::Channel& c = reader.channels().at(message.channel_id);
+    if (c.topic != topic) continue;
+    if (channel == 0) {
+      const uavslam::io::mcap::Schema& s = reader.schemas().at(c.schema_id);
+      channel = writer.add_channel(writer.add_schema(s.name, s.encoding, s.data), c.topic,
+                                   c.message_encoding, c.metadata);
+    }
+    writer.write(channel, message.sequence, message.log_time, message.publish_time,
+                 message.data.data(), message.data.size());
+  }
+  writer.close();
+}
+
+TEST_F(UavslamCli, OfflineRefusesALogWithScansButNoImu) {
+  const RecordedFlight flight = record_short_flight(dir);
+  ASSERT_FALSE(HasFailure());
+  const std::string scans_only = (dir / "scans_only.mcap").string();
+  copy_channel(flight.log, scans_only, "scan");
+  const CommandResult r =
+      run("offline --quiet --log " + scans_only + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(scans_only + ": its 801 scans"));
+  EXPECT_THAT(r.output, HasSubstr("no imu channel: nothing to orient them"));
+  EXPECT_FALSE(fs::exists(dir / "o"));
+}
+
+TEST_F(UavslamCli, OfflineNamesAFileThatIsNotMcap) {
+  const CommandResult r =
+      run("offline --log " + source("config/slam.yaml") + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(source("config/slam.yaml") + ": not an MCAP file"));
+  const CommandResult sensor_alone =
+      run("offline --scenario " + source("config/scenarios/short.yaml") + " --sensor " +
+          source("config/scenarios/short.yaml") + " --out " + (dir / "o").string());
+  EXPECT_NE(sensor_alone.exit_code, 0);
+  EXPECT_THAT(sensor_alone.output, HasSubstr("--log"));
 }
