@@ -9,7 +9,7 @@ JOBS       ?= $(shell nproc)
 export CCACHE_BASEDIR := $(CURDIR)
 UAVSLAM    := $(BUILD)/bin/uavslam
 
-.PHONY: all deps configure build demo simulate test test-unit test-asan fuzz bench bench-latency sweep real-logs \
+.PHONY: all deps configure build demo simulate offline test test-unit test-asan fuzz bench bench-latency sweep real-logs \
         format format-check clean
 
 all: build
@@ -34,6 +34,14 @@ demo: build
 simulate: build
 	$(UAVSLAM) simulate --scenario config/scenarios/demo.yaml --config config/slam.yaml \
 	  --out out/simulate
+
+# The offline dense mapper on the demo flight's log (written by simulate --log), with the real-time
+# pass over the same log for comparison (README "Offline dense mapping").
+offline: build
+	$(UAVSLAM) simulate --quiet --scenario config/scenarios/demo.yaml --config config/slam.yaml \
+	  --out out/simulate --log out/demo_flight.mcap
+	$(UAVSLAM) offline --log out/demo_flight.mcap --sensor config/scenarios/demo.yaml \
+	  --config config/slam.yaml --out out/offline
 
 # Every test: unit and integration tests of the release build, then the unit tests under
 # AddressSanitizer + UndefinedBehaviorSanitizer, then the log readers fuzzed for a bounded time.
