@@ -36,23 +36,34 @@ class DenseCloud {
   double voxel() const { return voxel_; }
 
  private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  // One voxel, in the hash table itself (open addressing, linear probing): a point costs one
+  // memory access, and millions of voxels one allocation. The sums are offsets from the voxel's
+  // corner, small enough for float.
   struct Voxel {
-    Vec3 sum = Vec3::Zero();
-    double intensity_sum = 0.0;
+    std::uint64_t key = kEmpty;
+    float sum[3] = {0.0f, 0.0f, 0.0f};
+    float intensity_sum = 0.0f;
     double first_time = 0.0;
     std::uint32_t count = 0;
+    std::uint32_t order = 0;  // how many voxels were hit before this one
   };
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  // A point on its way into the table: its voxel's key and its offset from the voxel's corner.
+  struct Placed {
+    std::uint64_t key;
+    Vec3 offset;
+    float intensity;
+  };
 
-  Voxel& voxel_at(std::uint64_t key);
-  void grow();
+  bool place(const Vec3& position, float intensity, Placed& placed) const;
+  void accumulate(const Placed& placed, double time);
+  void make_room_for(std::size_t more_voxels);
+  Vec3 corner_of(std::uint64_t key) const;
 
   double voxel_;
-  // An open-addressing hash table (linear probing) from the packed voxel key to the voxel: one
-  // allocation for millions of voxels where a node-based map makes one each.
-  std::vector<std::uint64_t> keys_;
-  std::vector<std::uint32_t> slots_;  // index into voxels_, per key
-  std::vector<Voxel> voxels_;
+  std::vector<Voxel> table_;
+  std::size_t voxel_count_ = 0;
+  std::vector<Placed> placed_;  // one scan's, reused
   std::vector<DensePoint> unfiltered_;
   std::uint64_t points_added_ = 0;
 };
