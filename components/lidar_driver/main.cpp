@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <variant>
 
@@ -38,18 +39,34 @@
 namespace uavslam {
 namespace {
 
+std::string number_text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+// The `scan` writer every source publishes through, announced on stderr.
+struct ScanOutput {
+  ScanOutput(const process::NodeOptions& node, const std::string& from, const std::string& pace)
+      : participant(node.domain, process::profiles_path(node), node.participant_profile,
+                    "lidar_driver"),
+        topic(dds::topic_name(node.vehicle, dds::kScanTopic)),
+        writer(participant, topic, node.profile(dds::kScanTopic, "sensor_writer")) {
+    std::cerr << "lidar_driver: publishing " << topic << " from " << from << " at " << pace
+              << " (domain " << node.domain << ")\n";
+  }
+  dds::Participant participant;
+  std::string topic;
+  dds::Writer<msg::LaserScanPubSubType> writer;
+};
+
 int publish_scans(const process::NodeOptions& node, const process::SimSourceOptions& o,
                   const std::string& groundtruth_path) {
   const sim::Scenario scenario = io::load_scenario(o.scenario);
   sim::FlightSimulator simulator(scenario);
 
-  dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
-                               "lidar_driver");
-  const std::string topic = dds::topic_name(node.vehicle, dds::kScanTopic);
-  dds::Writer<msg::LaserScanPubSubType> writer(participant, topic,
-                                               node.profile(dds::kScanTopic, "sensor_writer"));
-  std::cerr << "lidar_driver: publishing " << topic << " from " << scenario.name << " at "
-            << scenario.lidar.rate_hz * o.rate << " Hz (domain " << node.domain << ")\n";
+  ScanOutput out(node, scenario.name, number_text(scenario.lidar.rate_hz * o.rate) + " Hz");
+  auto& writer = out.writer;
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
   std::vector<Pose> truth;
@@ -80,13 +97,8 @@ msg::LaserScan to_msg(const io::TimedCarmenScan& timed, const dds::Source& sourc
 int replay_scans(const process::NodeOptions& node, const process::SimSourceOptions& o,
                  const std::string& log_path) {
   io::CarmenScanStream stream(log_path, o.max_scans);  // a missing file: FileError, exit 2
-  dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
-                               "lidar_driver");
-  const std::string topic = dds::topic_name(node.vehicle, dds::kScanTopic);
-  dds::Writer<msg::LaserScanPubSubType> writer(participant, topic,
-                                               node.profile(dds::kScanTopic, "sensor_writer"));
-  std::cerr << "lidar_driver: publishing " << topic << " from " << log_path << " at " << o.rate
-            << "x the recorded rate (domain " << node.domain << ")\n";
+  ScanOutput out(node, log_path, number_text(o.rate) + "x the recorded rate");
+  auto& writer = out.writer;
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
   const dds::Source source{"laser", node.vehicle};
@@ -109,13 +121,8 @@ int replay_recorded_scans(const process::NodeOptions& node, const process::SimSo
   // A missing, foreign or unreadable file: FileError naming it, exit 2.
   dds::RecordedMessageStream stream(log_path,
                                     process::recorded_topics(node.vehicle, dds::kScanTopic));
-  dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
-                               "lidar_driver");
-  const std::string topic = dds::topic_name(node.vehicle, dds::kScanTopic);
-  dds::Writer<msg::LaserScanPubSubType> writer(participant, topic,
-                                               node.profile(dds::kScanTopic, "sensor_writer"));
-  std::cerr << "lidar_driver: publishing " << topic << " from " << log_path << " at " << o.rate
-            << "x the recorded rate (domain " << node.domain << ")\n";
+  ScanOutput out(node, log_path, number_text(o.rate) + "x the recorded rate");
+  auto& writer = out.writer;
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
   process::QosWatch qos("lidar_driver");

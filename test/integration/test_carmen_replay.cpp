@@ -21,6 +21,7 @@
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
 
+#include "MatcherListener.hpp"
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
 #include "dds/Conversions.hpp"
@@ -32,6 +33,9 @@
 
 namespace uavslam {
 namespace {
+
+using test::MatcherCounts;
+using test::MatcherListener;
 
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
@@ -151,60 +155,6 @@ const OdometryPose& odometry_at(const std::vector<OdometryPose>& path, double st
     return std::abs(a.stamp - stamp) < std::abs(b.stamp - stamp);
   });
 }
-
-// The matcher's counts in its last status.
-struct MatcherCounts {
-  std::uint64_t received = 0, skipped = 0, accepted = 0, rejected = 0;
-  std::uint64_t processed() const { return accepted + rejected; }
-};
-
-// What the test hears from the matcher.
-class MatcherListener {
- public:
-  MatcherListener(int domain, const std::string& vehicle)
-      : participant_(domain, dds::default_profiles_path(), "uavslam_loopback", "test"),
-        poses_(participant_, dds::topic_name(vehicle, dds::kPoseTopic), "state_reader",
-               [this](const msg::PoseWithCovarianceStamped& m,
-                      const eprosima::fastdds::dds::SampleInfo&) {
-                 std::lock_guard<std::mutex> lock(mutex_);
-                 received_.push_back(dds::from_msg(m));
-               }),
-        status_(participant_, dds::topic_name(vehicle, dds::kMatcherStatusTopic), "status_reader",
-                [this](const msg::MatcherStatus& m, const eprosima::fastdds::dds::SampleInfo&) {
-                  {
-                    std::lock_guard<std::mutex> lock(mutex_);
-                    last_scan_ = m.scan_seq();
-                    counts_ = {m.scans_received(), m.scans_skipped(), m.scans_accepted(),
-                               m.scans_rejected()};
-                  }
-                  changed_.notify_all();
-                }) {}
-
-  bool matched() { return poses_.wait_for_matched(1, 30s) && status_.wait_for_matched(1, 30s); }
-  // Waits until the matcher reported on scan `seq` (it may skip scans, never go back).
-  bool wait_for_scan(std::uint64_t seq, std::chrono::seconds timeout) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    return changed_.wait_for(lock, timeout, [&] { return last_scan_ && *last_scan_ >= seq; });
-  }
-  std::vector<Pose> poses() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return received_;
-  }
-  MatcherCounts counts() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return counts_;
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  std::vector<Pose> received_;
-  std::optional<std::uint64_t> last_scan_;
-  MatcherCounts counts_;
-  dds::Participant participant_;
-  dds::Reader<msg::PoseWithCovarianceStampedPubSubType> poses_;
-  dds::Reader<msg::MatcherStatusPubSubType> status_;
-};
 
 // The scans in a recorder's file, which it closed (summary, Footer) when it stopped.
 std::uint64_t scans_recorded(const std::string& file) {

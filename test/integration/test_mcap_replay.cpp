@@ -19,6 +19,7 @@
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
 
+#include "MatcherListener.hpp"
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
 #include "dds/Conversions.hpp"
@@ -33,52 +34,15 @@
 namespace uavslam {
 namespace {
 
+using test::MatcherCounts;
+using test::MatcherListener;
+
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 
 constexpr int kDomain = 170;         // the whole flight's replay
 constexpr int kDamagedDomain = 172;  // the cut recording's
 const std::string kScenario = std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/short.yaml";
-
-// What the test hears from the matcher: every pose, and the last scan it reported on.
-class MatcherListener {
- public:
-  explicit MatcherListener(int domain)
-      : participant_(domain, dds::default_profiles_path(), "uavslam_loopback", "test"),
-        poses_(participant_, dds::topic_name("uav1", dds::kPoseTopic), "state_reader",
-               [this](const msg::PoseWithCovarianceStamped& m,
-                      const eprosima::fastdds::dds::SampleInfo&) {
-                 std::lock_guard<std::mutex> lock(mutex_);
-                 received_.push_back(dds::from_msg(m));
-               }),
-        status_(participant_, dds::topic_name("uav1", dds::kMatcherStatusTopic), "status_reader",
-                [this](const msg::MatcherStatus& m, const eprosima::fastdds::dds::SampleInfo&) {
-                  {
-                    std::lock_guard<std::mutex> lock(mutex_);
-                    last_scan_ = m.scan_seq();
-                  }
-                  changed_.notify_all();
-                }) {}
-
-  bool matched() { return poses_.wait_for_matched(1, 30s) && status_.wait_for_matched(1, 30s); }
-  bool wait_for_scan(std::uint64_t seq, std::chrono::seconds timeout) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    return changed_.wait_for(lock, timeout, [&] { return last_scan_ && *last_scan_ >= seq; });
-  }
-  std::vector<Pose> poses() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return received_;
-  }
-
- private:
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  std::vector<Pose> received_;
-  std::optional<std::uint64_t> last_scan_;
-  dds::Participant participant_;
-  dds::Reader<msg::PoseWithCovarianceStampedPubSubType> poses_;
-  dds::Reader<msg::MatcherStatusPubSubType> status_;
-};
 
 // The recording's ground_truth channel, by stamp in ns.
 std::map<std::int64_t, Pose> recorded_truth(const std::string& log) {
@@ -116,7 +80,7 @@ TEST_F(McapReplay, ARecordedFlightReplaysIntoTheMatcherOnTrack) {
   const std::string log = record_short_flight();
   ASSERT_FALSE(HasFailure());
 
-  MatcherListener listener(kDomain);
+  MatcherListener listener(kDomain, "uav1");
   process::ChildProcess matcher(
       node_argv("slam_matcher", kDomain,
                 {"--vehicle", "uav1", "--sensor", kScenario, "--slam-config",
