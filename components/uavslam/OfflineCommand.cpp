@@ -236,7 +236,7 @@ int run_offline(const OfflineOptions& o) {
   const Input input = open_input(o);
   std::filesystem::create_directories(o.out);
   PassOptions dense_options{offline_variant(config), o.voxel,
-                            OccupancyConfig{o.octomap_resolution}};
+                            OccupancyConfig{o.octomap_resolution, -1.0, 0.7, 0.4, /*batch=*/true}};
   PassResult dense = run_one_pass(input, dense_options, "offline  ", o);
   std::optional<PassResult> realtime;
   if (!o.skip_realtime && !dense.stopped_early) {

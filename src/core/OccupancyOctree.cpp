@@ -50,13 +50,14 @@ bool OccupancyOctree::insert_keyframe(const Points& points, const Vec3& sensor_o
   // A cell hit by several rays of one keyframe is updated once (discretize), so a dense patch
   // of one scan does not count as many independent observations.
   tree_->insertPointCloud(cloud, to_octomap(sensor_origin), config_.max_range,
-                          /*lazy_eval=*/false, /*discretize=*/true);
+                          /*lazy_eval=*/config_.batch, /*discretize=*/true);
   points_inserted_ += points.size();
   ++keyframes_inserted_;
   return true;
 }
 
 const octomap::OcTree& OccupancyOctree::pruned_tree() {
+  if (config_.batch) tree_->updateInnerOccupancy();
   tree_->prune();
   return *tree_;
 }

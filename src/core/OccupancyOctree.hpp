@@ -17,6 +17,10 @@ struct OccupancyConfig {
   double max_range = -1.0;       // m; a longer ray clears up to here and marks nothing; <= 0: any
   double probability_hit = 0.7;  // OctoMap's defaults
   double probability_miss = 0.4;
+  // Inner nodes updated once, when the tree is asked for (OctoMap's lazy evaluation): the same
+  // tree, built faster, for a map made in one go (the offline mapper); a live map (the map
+  // server) updates them as it goes.
+  bool batch = false;
 };
 
 class OccupancyOctree {
