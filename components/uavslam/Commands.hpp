@@ -22,7 +22,4 @@ void add_offline_command(CLI::App& app, int& exit_code);
 // --config FILE (optional; the seed's defaults otherwise) and then each --set key=value.
 SlamConfig load_config(const std::string& path, const std::vector<std::string>& overrides);
 
-// A one-line progress report on a terminal; nothing when stderr is not one.
-void report_progress(const char* what, std::size_t done, std::size_t total);
-
 }  // namespace uavslam::cli

@@ -4,10 +4,12 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 #include <unistd.h>
 
 #include "Commands.hpp"
+#include "ProgressBar.hpp"
 #include "RunSummary.hpp"
 #include "SimulatedFlight.hpp"
 #include "common/StopRequest.hpp"
@@ -63,8 +65,15 @@ int run_simulate(const SimulateOptions& o) {
   if (!o.quiet) std::cerr << "simulating " << scenario.name << " ...\n";
   const SensorLog log = simulate_sensors(scenario);
   if (!o.log.empty()) write_flight_log(o.log, scenario, log);
+  std::optional<ProgressBar> bar;  // on a terminal only: a log file gets the summary alone
+  if (!o.quiet && isatty(2)) bar.emplace("SLAM", log.scans.size(), "scans", std::cerr, true);
   const SlamRun run = run_slam(log, config, [&](std::size_t done, std::size_t total) {
-    if (!o.quiet) report_progress("SLAM", done, total);
+    if (!bar) return;
+    if (done >= total) {
+      bar->finish(done);
+    } else {
+      bar->update(done);
+    }
   });
   const RunSummary summary = summarize_run(scenario.name, run, log.duration);
   write_outputs(o.out, run, log.ground_truth, to_json(summary, config));
@@ -82,13 +91,6 @@ SlamConfig load_config(const std::string& path, const std::vector<std::string>& 
   for (const std::string& assignment : overrides)
     io::apply_slam_config_override(config, assignment);
   return config;
-}
-
-void report_progress(const char* what, std::size_t done, std::size_t total) {
-  static const bool terminal = isatty(2);
-  if (!terminal || total == 0) return;
-  std::cerr << "\r  " << what << " " << (100 * done / total) << "% (" << done << "/" << total
-            << " scans)" << (done >= total ? "\n" : "") << std::flush;
 }
 
 void add_simulate_command(CLI::App& app, int& exit_code) {
