@@ -47,21 +47,30 @@ class StampRange {
   double last_ = -std::numeric_limits<double>::infinity();
 };
 
-// One geometry per distinct beam layout and laser mount (a log normally has one).
+// One geometry per distinct beam layout and laser mount (a log normally has one); a scan is
+// compared by its layout's parameters, so the beam directions are computed once per layout.
 class CarmenGeometries {
  public:
   std::shared_ptr<const ScanGeometry> for_scan(const io::CarmenScan& scan) {
-    ScanGeometry candidate = io::to_scan_geometry(scan);
-    if (!geometry_ || candidate.directions != geometry_->directions ||
-        candidate.max_range != geometry_->max_range ||
-        !candidate.mount.isApprox(geometry_->mount, 0.0)) {
-      geometry_ = std::make_shared<const ScanGeometry>(std::move(candidate));
+    const Eigen::Isometry3d mount = io::laser_mount(scan);
+    if (!geometry_ || scan.ranges.size() != beams_ || scan.start_angle != start_ ||
+        scan.angle_increment != increment_ || scan.max_range != max_range_ ||
+        !mount.isApprox(geometry_->mount, 0.0)) {
+      geometry_ = std::make_shared<const ScanGeometry>(io::to_scan_geometry(scan));
+      beams_ = scan.ranges.size();
+      start_ = scan.start_angle;
+      increment_ = scan.angle_increment;
+      max_range_ = scan.max_range;
     }
     return geometry_;
   }
 
  private:
   std::shared_ptr<const ScanGeometry> geometry_;
+  std::size_t beams_ = 0;
+  double start_ = 0.0;
+  double increment_ = 0.0;
+  double max_range_ = 0.0;
 };
 
 class CarmenInput : public LogInput {

@@ -29,8 +29,11 @@ class Pass {
   void take(const LogEvent& event) {
     switch (event.kind) {
       case LogEvent::Kind::Imu:
-        if (slam_) slam_->add_imu(event.imu);
-        pending_imu_.push_back(event.imu);
+        if (slam_) {
+          slam_->add_imu(event.imu);
+        } else {
+          pending_imu_.push_back(event.imu);
+        }
         break;
       case LogEvent::Kind::Odometry:
         if (use_odometry_) odometry_.add(event.odometry);
@@ -52,14 +55,16 @@ class Pass {
     slam_ =
         std::make_unique<SlamPipeline>(options_.config, event.start_hint.value_or(Vec3::Zero()));
     for (const ImuSample& imu : pending_imu_) slam_->add_imu(imu);
+    pending_imu_.clear();
   }
 
   void take_scan(const LogEvent& event) {
     if (!slam_) start(event);
-    pending_imu_.clear();
     const auto started = Clock::now();
     const Vec3 predicted = use_odometry_ ? odometry_.motion_to(event.scan.stamp) : Vec3::Zero();
     const ScanReport report = slam_->process_scan(event.scan, predicted);
+    result_.scan_ms.push_back(
+        std::chrono::duration<double, std::milli>(Clock::now() - started).count());
     if (report.accepted() || report.dead_reckoned) {
       if (use_odometry_) odometry_.scan_posed(event.scan.stamp);
       add_dense(event.scan, report);
@@ -67,8 +72,6 @@ class Pass {
       pose.stamp = event.output_stamp;
       result_.posed.push_back({event.output_stamp, pose, event.truth, report.dead_reckoned});
     }
-    result_.scan_ms.push_back(
-        std::chrono::duration<double, std::milli>(Clock::now() - started).count());
     ++result_.scans_in;
     result_.keyframes += report.map_updated;
     result_.dead_reckoned += report.dead_reckoned;
@@ -77,13 +80,23 @@ class Pass {
   // The offline variant's products: every valid point of the posed scan into the cloud, and a
   // keyframe's into the OctoMap (ray-casting every scan would cost more than the matching).
   void add_dense(const Scan& scan, const ScanReport& report) {
-    if (result_.cloud) result_.cloud->add_scan(scan, report.pose);
+    if (result_.cloud) {
+      const auto started = Clock::now();
+      result_.cloud->add_scan(scan, report.pose);
+      result_.cloud_seconds += seconds_since(started);
+    }
     if (!result_.occupancy || !report.map_updated) return;
+    const auto started = Clock::now();
     Points points = project_scan(scan, report.pose.orientation).points;
     for (Vec3& p : points) p += report.pose.position;
     const Vec3 sensor =
         report.pose.position + report.pose.orientation * scan.geometry->mount.translation();
     result_.occupancy->insert_keyframe(points, sensor);
+    result_.occupancy_seconds += seconds_since(started);
+  }
+
+  static double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
   }
 
   const PassOptions& options_;
@@ -91,7 +104,7 @@ class Pass {
   bool use_odometry_;
   OdometryPrior odometry_;
   std::unique_ptr<SlamPipeline> slam_;
-  std::vector<ImuSample> pending_imu_;  // IMU samples before the first scan
+  std::vector<ImuSample> pending_imu_;  // IMU samples before the first scan, until it comes
 };
 
 }  // namespace

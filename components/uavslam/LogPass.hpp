@@ -36,7 +36,9 @@ struct PosedScan {
 
 struct PassResult {
   std::vector<PosedScan> posed;
-  std::vector<double> scan_ms;  // pipeline time of every scan
+  std::vector<double> scan_ms;     // pipeline (matcher) time of every scan
+  double cloud_seconds = 0.0;      // adding the posed scans to the dense cloud
+  double occupancy_seconds = 0.0;  // ray-casting the keyframes into the OctoMap
   OutcomeCounts outcomes{};
   std::size_t scans_in = 0;
   std::size_t keyframes = 0;
@@ -52,7 +54,7 @@ struct PassResult {
   std::string input_damage;  // LogInput::damage(): the input was cut short
 
   double real_time_factor() const { return wall_seconds > 0 ? data_seconds / wall_seconds : 0; }
-  double pipeline_seconds() const;  // the matcher's share of wall_seconds
+  double pipeline_seconds() const;  // the matcher's share of wall_seconds (sum of scan_ms)
   std::vector<Pose> estimate() const;
   std::vector<Pose> ground_truth() const;  // where known, at the posed scans
   // "timestamp x y theta" per posed scan (the output stamps), for `uavslam eval --relations`.

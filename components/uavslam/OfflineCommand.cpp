@@ -59,6 +59,7 @@ SlamConfig offline_variant(SlamConfig config) {
 
 struct Input {
   LogInputFactory open;
+  std::unique_ptr<LogInput> opened;  // opened already (to check it), for the first pass
   std::string name;
   std::optional<sim::World> world;  // the true surfaces, for a simulated flight
   bool planar_estimate = false;     // CARMEN: also estimate.txt for `uavslam eval --relations`
@@ -75,25 +76,27 @@ Input open_log_input(const OfflineOptions& o) {
     geometry = sim::make_scan_geometry(scenario.lidar);
     world.emplace(scenario.world);
   }
-  open_mcap_input(o.log, geometry);  // refuses a file it cannot map before any output is made
-  return {[path = o.log, geometry] { return open_mcap_input(path, geometry); }, o.log,
-          std::move(world), false};
+  // Opened now, so a file it cannot map is refused before any output is made.
+  std::unique_ptr<LogInput> opened = open_mcap_input(o.log, geometry);
+  return {[path = o.log, geometry] { return open_mcap_input(path, geometry); }, std::move(opened),
+          o.log, std::move(world), false};
 }
 
 Input open_input(const OfflineOptions& o) {
   if (!o.log.empty()) return open_log_input(o);
   if (!o.carmen.empty()) {
-    return {[path = o.carmen] { return open_carmen_input(path); }, o.carmen, std::nullopt, true};
+    return {[path = o.carmen] { return open_carmen_input(path); }, nullptr, o.carmen, std::nullopt,
+            true};
   }
   const sim::Scenario scenario = io::load_scenario(o.scenario);
   auto log = std::make_shared<const SensorLog>(simulate_sensors(scenario));
-  return {[log] { return open_simulated_input(log); }, o.scenario, sim::World(scenario.world),
-          false};
+  return {[log] { return open_simulated_input(log); }, nullptr, o.scenario,
+          sim::World(scenario.world), false};
 }
 
-PassResult run_one_pass(const Input& input, const PassOptions& options, const char* label,
+PassResult run_one_pass(Input& input, const PassOptions& options, const char* label,
                         const OfflineOptions& o) {
-  std::unique_ptr<LogInput> log = input.open();
+  std::unique_ptr<LogInput> log = input.opened ? std::move(input.opened) : input.open();
   std::optional<ProgressBar> bar;
   if (!o.quiet) bar.emplace(label, log->expected_scans(), "scans", std::cerr, isatty(2) != 0);
   return run_pass(*log, options, bar ? &*bar : nullptr, o.quiet ? nullptr : &std::cerr);
@@ -169,7 +172,9 @@ nlohmann::json make_report(const Input& input, const PassResult& dense,
   report["offline"]["cloud"] = {{"points", cloud.size()},
                                 {"points_before_voxel_filter", dense.cloud->points_added()},
                                 {"voxel_m", dense.cloud->voxel()},
-                                {"octomap_occupied_leaves", dense.occupancy->occupied_leaves()}};
+                                {"octomap_occupied_leaves", dense.occupancy->occupied_leaves()},
+                                {"cloud_seconds", dense.cloud_seconds},
+                                {"octomap_seconds", dense.occupancy_seconds}};
   if (input.world) {
     report["offline"]["cloud"]["distance_to_true_surfaces"] =
         surface_distances(*input.world, positions(cloud));
@@ -211,7 +216,9 @@ void print_report(std::ostream& out, const nlohmann::json& r) {
   const nlohmann::json& cloud = r["offline"]["cloud"];
   out << "  dense cloud       " << cloud["points"].get<std::size_t>() << " points ("
       << cloud["points_before_voxel_filter"].get<std::uint64_t>() << " before the "
-      << std::setprecision(3) << cloud["voxel_m"].get<double>() << " m voxel filter)";
+      << std::setprecision(3) << cloud["voxel_m"].get<double>() << " m voxel filter; "
+      << std::setprecision(2) << cloud["cloud_seconds"].get<double>() << " s, OctoMap "
+      << cloud["octomap_seconds"].get<double>() << " s)";
   if (cloud.contains("distance_to_true_surfaces")) {
     out << std::setprecision(4) << ", mean distance to the true surfaces "
         << cloud["distance_to_true_surfaces"]["mean_m"].get<double>() << " m";
@@ -233,7 +240,7 @@ int run_offline(const OfflineOptions& o) {
                                      : o.carmen)
               << "\n";
   }
-  const Input input = open_input(o);
+  Input input = open_input(o);
   std::filesystem::create_directories(o.out);
   PassOptions dense_options{offline_variant(config), o.voxel,
                             OccupancyConfig{o.octomap_resolution, -1.0, 0.7, 0.4, /*batch=*/true}};
