@@ -25,7 +25,8 @@ using namespace std::chrono_literals;
 
 struct LaunchOptions {
   std::string file;
-  int domain = -1;  // -1: the launch file's
+  int domain = -1;                  // -1: the launch file's
+  std::string participant_profile;  // empty: the launch file's
   std::string log_dir;
 };
 
@@ -68,6 +69,9 @@ std::vector<std::string> command_line(const io::LaunchFile& launch, const io::La
   if (p.node_options) {
     argv.insert(argv.end(),
                 {"--domain", std::to_string(launch.domain), "--vehicle", launch.vehicle});
+    if (!launch.participant_profile.empty()) {
+      argv.insert(argv.end(), {"--participant-profile", launch.participant_profile});
+    }
   }
   for (const std::string& arg : p.args) argv.push_back(substitute(arg, start_at));
   return argv;
@@ -107,6 +111,7 @@ RunEnd supervise(std::vector<Running>& processes) {
 int run_launch(const LaunchOptions& o) {
   io::LaunchFile launch = io::load_launch_file(o.file);
   if (o.domain >= 0) launch.domain = o.domain;
+  if (!o.participant_profile.empty()) launch.participant_profile = o.participant_profile;
   if (!o.log_dir.empty()) launch.log_dir = o.log_dir;
   fs::create_directories(launch.log_dir);
 
@@ -149,6 +154,9 @@ void add_launch_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--domain", options->domain,
                   "DDS domain id for every process (overrides the file)")
       ->check(CLI::Range(0, 232));
+  cmd->add_option("--participant-profile", options->participant_profile,
+                  "DDS participant profile for every process (overrides the file), e.g. "
+                  "uavslam_link_uav on a vehicle talking to a ground station");
   cmd->add_option("--log-dir", options->log_dir, "where <name>.log go (overrides the file)");
   cmd->callback([options, &exit_code] { exit_code = run_launch(*options); });
 }

@@ -29,11 +29,13 @@ LaunchedProcess read_process(const YamlReader& node) {
 
 LaunchFile load_launch_file(const std::string& path) {
   const YamlReader file = YamlReader::from_file(path, "launch");
-  file.expect_keys_only(
-      {"domain", "vehicle", "log_dir", "stop_grace_s", "start_delay_s", "processes"});
+  file.expect_keys_only({"domain", "vehicle", "participant_profile", "log_dir", "stop_grace_s",
+                         "start_delay_s", "processes"});
   LaunchFile launch;
   launch.domain = file.get_int_or("domain", launch.domain, NumberRange::between(0, 232));
   launch.vehicle = file.get_string_or("vehicle", launch.vehicle);
+  launch.participant_profile =
+      file.get_string_or("participant_profile", launch.participant_profile);
   launch.log_dir = file.get_string_or("log_dir", launch.log_dir);
   launch.stop_grace_s =
       file.get_double_or("stop_grace_s", launch.stop_grace_s, NumberRange::positive());

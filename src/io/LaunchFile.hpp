@@ -3,6 +3,8 @@
 //
 //   domain: 42              # passed to every process as --domain (and vehicle as --vehicle)
 //   vehicle: uav1
+//   participant_profile: uavslam_link_uav  # passed as --participant-profile (default: the
+//                                          # processes' own, uavslam_loopback)
 //   log_dir: out/demo/logs  # one <name>.log per process
 //   stop_grace_s: 10        # SIGINT, then SIGKILL after this long
 //   start_delay_s: 3        # "{start_at}" in args: the system-clock time this long after launch
@@ -30,6 +32,7 @@ struct LaunchedProcess {
 struct LaunchFile {
   int domain = 0;
   std::string vehicle = "uav1";
+  std::string participant_profile;  // empty: each process's default
   std::string log_dir = "out/logs";
   double stop_grace_s = 10.0;
   double start_delay_s = 3.0;  // the simulated sensors' shared start, after discovery

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
@@ -31,7 +32,8 @@ using eprosima::fastrtps::types::ReturnCode_t;
 using testing::HasSubstr;
 using testing::IsSupersetOf;
 
-const std::vector<std::string> kClasses{"sensor", "state", "map_points", "map", "status"};
+const std::vector<std::string> kClasses{"sensor",     "sensor_link", "state",
+                                        "map_points", "map",         "status"};
 
 // A QoS file written by the test, removed afterwards.
 class TempXml {
@@ -63,7 +65,10 @@ TEST(QosProfiles, TheShippedFileLoads) {
 
 TEST(QosProfiles, TheShippedFileNamesEveryClassAndTheLoopbackParticipant) {
   const std::string path = default_profiles_path();
-  EXPECT_EQ(profile_names(path, "participant"), std::vector<std::string>{"uavslam_loopback"});
+  EXPECT_THAT(profile_names(path, "participant"),
+              testing::UnorderedElementsAre("uavslam_loopback", "uavslam_link_uav",
+                                            "uavslam_link_gcs", "uavslam_link_uav_client",
+                                            "uavslam_link_gcs_client", "uavslam_discovery_server"));
   std::vector<std::string> writers, readers;
   for (const std::string& c : kClasses) {
     writers.push_back(c + "_writer");
@@ -100,26 +105,79 @@ TEST(QosProfiles, EveryDeclaredProfileIsDefinedInFastDds) {
 
 // The network rule as configuration: no built-in transports, shared memory, and UDP only on
 // 127.0.0.1 (tcpdump confirms it on the wire: test/net/check_loopback_only.sh).
+// What a participant profile may send through: its shared-memory transports, and the interface
+// whitelist of each UDPv4 transport (an empty whitelist would mean every interface).
+struct ProfileTransports {
+  bool builtin = true;
+  int shm = 0;
+  std::vector<std::vector<std::string>> udp_whitelists;
+  int other = 0;
+};
+
+ProfileTransports transports_of(const std::string& profile) {
+  load_profiles(default_profiles_path());
+  fdds::DomainParticipantQos qos;
+  EXPECT_EQ(fdds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(
+                profile, qos),
+            ReturnCode_t::RETCODE_OK)
+      << profile;
+  ProfileTransports t;
+  t.builtin = qos.transport().use_builtin_transports;
+  for (const auto& descriptor : qos.transport().user_transports) {
+    if (dynamic_cast<eprosima::fastdds::rtps::SharedMemTransportDescriptor*>(descriptor.get())) {
+      ++t.shm;
+    } else if (const auto* u = dynamic_cast<eprosima::fastdds::rtps::UDPv4TransportDescriptor*>(
+                   descriptor.get())) {
+      t.udp_whitelists.push_back(u->interfaceWhiteList);
+    } else {
+      ++t.other;
+    }
+  }
+  return t;
+}
+
 TEST(QosProfiles, TheDefaultParticipantUsesLoopbackTransportsOnly) {
+  const ProfileTransports t = transports_of("uavslam_loopback");
+  EXPECT_FALSE(t.builtin);
+  EXPECT_EQ(t.shm, 1);
+  EXPECT_EQ(t.other, 0);
+  EXPECT_THAT(t.udp_whitelists, testing::ElementsAre(std::vector<std::string>{"127.0.0.1"}));
+}
+
+// The network rule on a link: UDP only on the link's own address (the emulated link's, which the
+// two-host tests build inside network namespaces), never an open whitelist.
+TEST(QosProfiles, TheLinkParticipantsSendOnTheLinkAddressOnly) {
+  const std::vector<std::pair<std::string, std::string>> link{
+      {"uavslam_link_uav", "10.200.0.1"},
+      {"uavslam_link_gcs", "10.200.0.2"},
+      {"uavslam_link_uav_client", "10.200.0.1"},
+      {"uavslam_link_gcs_client", "10.200.0.2"},
+      {"uavslam_discovery_server", "10.200.0.1"}};
+  for (const auto& [profile, address] : link) {
+    const ProfileTransports t = transports_of(profile);
+    EXPECT_FALSE(t.builtin) << profile;
+    EXPECT_EQ(t.other, 0) << profile;
+    EXPECT_THAT(t.udp_whitelists, testing::ElementsAre(std::vector<std::string>{address}))
+        << profile;
+  }
+}
+
+// A link datagram fits one WiFi frame (MTU 1500 less the IP and UDP headers), so a lost frame
+// costs one fragment, which a RELIABLE writer resends.
+TEST(QosProfiles, TheLinkTransportsKeepDatagramsUnderTheWifiMtu) {
   load_profiles(default_profiles_path());
   fdds::DomainParticipantQos qos;
   ASSERT_EQ(fdds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(
-                "uavslam_loopback", qos),
+                "uavslam_link_uav", qos),
             ReturnCode_t::RETCODE_OK);
-  EXPECT_FALSE(qos.transport().use_builtin_transports);
-  int shm = 0, udp = 0;
+  int udp = 0;
   for (const auto& descriptor : qos.transport().user_transports) {
-    if (dynamic_cast<eprosima::fastdds::rtps::SharedMemTransportDescriptor*>(descriptor.get())) {
-      ++shm;
-    } else if (const auto* u = dynamic_cast<eprosima::fastdds::rtps::UDPv4TransportDescriptor*>(
-                   descriptor.get())) {
+    if (const auto* u =
+            dynamic_cast<eprosima::fastdds::rtps::UDPv4TransportDescriptor*>(descriptor.get())) {
       ++udp;
-      EXPECT_EQ(u->interfaceWhiteList, std::vector<std::string>{"127.0.0.1"});
-    } else {
-      ADD_FAILURE() << "unexpected transport in uavslam_loopback";
+      EXPECT_LE(u->maxMessageSize, 1472u);
     }
   }
-  EXPECT_EQ(shm, 1);
   EXPECT_EQ(udp, 1);
 }
 

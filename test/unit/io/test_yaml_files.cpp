@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -409,16 +410,21 @@ TEST(LaunchFile, ShippedDemoListsTheSixProcesses) {
 }
 
 TEST(LaunchFile, EveryShippedLaunchFileLoads) {
-  const std::string dir = std::string(UAVSLAM_SOURCE_DIR) + "/config/launch/";
-  for (const char* name : {"demo.yaml", "uav.yaml", "ground.yaml"}) {
-    EXPECT_FALSE(load_launch_file(dir + name).processes.empty()) << name;
+  const std::filesystem::path dir = std::string(UAVSLAM_SOURCE_DIR) + "/config/launch";
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".yaml") continue;
+    EXPECT_FALSE(load_launch_file(entry.path().string()).processes.empty()) << entry.path();
+    ++files;
   }
+  EXPECT_GE(files, 3);
 }
 
 TEST_F(YamlFileTest, LaunchFileReadsEveryKey) {
   const LaunchFile launch = load_launch_file(write("launch_full.yaml", R"(
 domain: 7
 vehicle: uav3
+participant_profile: uavslam_link_gcs
 log_dir: /tmp/logs
 stop_grace_s: 2.5
 start_delay_s: 0
@@ -427,6 +433,7 @@ processes:
 )"));
   EXPECT_EQ(launch.domain, 7);
   EXPECT_EQ(launch.vehicle, "uav3");
+  EXPECT_EQ(launch.participant_profile, "uavslam_link_gcs");
   EXPECT_EQ(launch.log_dir, "/tmp/logs");
   EXPECT_DOUBLE_EQ(launch.stop_grace_s, 2.5);
   EXPECT_DOUBLE_EQ(launch.start_delay_s, 0.0);
