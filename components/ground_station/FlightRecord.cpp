@@ -41,6 +41,27 @@ void write_json(const std::string& path, const nlohmann::json& json) {
 
 }  // namespace
 
+// One line per pose: its scan, its stamp, when it arrived (system clock, s) and its scan -> pose
+// latency (empty when its scan had not arrived yet).
+void FlightRecord::write_arrivals(const std::string& file, const std::vector<Pose>& poses,
+                                  const std::vector<Arrival>& arrivals) {
+  std::ofstream out(file);
+  out << "scan_seq,stamp,received_at,latency_ms\n";
+  char line[128];
+  for (std::size_t i = 0; i < arrivals.size() && i < poses.size(); ++i) {
+    const Arrival& a = arrivals[i];
+    std::snprintf(line, sizeof line, "%llu,%.6f,%.6f,", static_cast<unsigned long long>(a.scan_seq),
+                  poses[i].stamp, a.received_at);
+    out << line;
+    if (a.latency_ms) {
+      std::snprintf(line, sizeof line, "%.3f", *a.latency_ms);
+      out << line;
+    }
+    out << "\n";
+  }
+  if (!out.flush()) throw io::file_error(file, "cannot write");
+}
+
 FlightRecord::FlightRecord(std::size_t latency_window) : latency_join_(latency_window) {}
 
 void FlightRecord::add_pose(const Pose& pose, std::uint64_t scan_seq, double received_at) {
@@ -48,7 +69,9 @@ void FlightRecord::add_pose(const Pose& pose, std::uint64_t scan_seq, double rec
   poses_.push_back(pose);
   if (!first_pose_at_) first_pose_at_ = received_at;
   last_pose_at_ = received_at;
-  if (const auto ms = latency_join_.add_pose(scan_seq, received_at)) latencies_ms_.push_back(*ms);
+  const std::optional<double> ms = latency_join_.add_pose(scan_seq, received_at);
+  if (ms) latencies_ms_.push_back(*ms);
+  arrivals_.push_back({scan_seq, received_at, ms});
 }
 
 void FlightRecord::add_malformed_pose() {
@@ -148,15 +171,18 @@ std::vector<std::string> FlightRecord::write_outputs(const std::string& dir) {
   fs::create_directories(dir, error);
   if (error) throw io::file_error(dir, "cannot create directory: " + error.message());
   std::vector<Pose> poses;
+  std::vector<Arrival> arrivals;
   std::shared_ptr<const octomap::OcTree> map;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     poses = poses_;
+    arrivals = arrivals_;
     map = map_;
   }
   auto path = [&](const char* name) { return (fs::path(dir) / name).string(); };
-  std::vector<std::string> files{"trajectory.tum"};
+  std::vector<std::string> files{"trajectory.tum", "pose_arrivals.csv"};
   io::write_tum(path("trajectory.tum"), poses);
+  write_arrivals(path("pose_arrivals.csv"), poses, arrivals);
   if (map) {
     io::write_bt(path("map.bt"), *map);
     io::write_ply(path("map_occupied.ply"), io::occupied_cell_centres(*map));

@@ -57,16 +57,27 @@ class FlightRecord {
   // Totals for summary.json; `files` lists what write_outputs wrote.
   nlohmann::json summary() const;
 
-  // Writes into `dir` (created if missing): trajectory.tum and summary.json always; map.bt and
+  // Writes into `dir` (created if missing): trajectory.tum, pose_arrivals.csv (when each pose
+  // arrived here, for link studies) and summary.json always; map.bt and
   // map_occupied.ply once a map arrived; map_topdown.png once a map or a pose did. Returns the
   // names written. Throws io::FileError naming the file that could not be written.
   std::vector<std::string> write_outputs(const std::string& dir);
 
  private:
+  // Per pose, in arrival order: when it arrived (system clock) and its latency if known then.
+  struct Arrival {
+    std::uint64_t scan_seq;
+    double received_at;
+    std::optional<double> latency_ms;
+  };
+  static void write_arrivals(const std::string& file, const std::vector<Pose>& poses,
+                             const std::vector<Arrival>& arrivals);
+
   mutable std::mutex mutex_;
   ScanPoseLatency latency_join_;
   std::vector<Pose> poses_;
   std::vector<double> latencies_ms_;
+  std::vector<Arrival> arrivals_;
   std::optional<double> first_pose_at_;
   double last_pose_at_ = 0.0;
   std::uint64_t malformed_poses_ = 0;

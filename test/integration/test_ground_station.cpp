@@ -2,6 +2,7 @@
 // writers (map snapshot and matcher status first, then poses and scans), starts the real process
 // afterwards, stops it with SIGTERM and checks every file it wrote.
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -155,6 +156,27 @@ TEST_F(GroundStationTest, LateJoinerGetsTheMapAndRecordsTheFlight) {
     EXPECT_NEAR((trajectory[i].position - pose(i).position).norm(), 0.0, 1e-6) << i;
     EXPECT_NEAR(trajectory[i].stamp, pose(i).stamp, 1e-6) << i;
   }
+  // When each pose arrived: one line per pose, in arrival order, on the system clock.
+  std::ifstream arrivals(out("pose_arrivals.csv"));
+  std::string line;
+  std::getline(arrivals, line);
+  EXPECT_EQ(line, "scan_seq,stamp,received_at,latency_ms");
+  const double now =
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  std::uint64_t rows = 0;
+  double previous = 0.0;
+  while (std::getline(arrivals, line)) {
+    unsigned long long seq = 0;
+    double stamp = 0.0, received_at = 0.0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%llu,%lf,%lf", &seq, &stamp, &received_at), 3) << line;
+    EXPECT_EQ(seq, rows);
+    EXPECT_NEAR(stamp, pose(rows).stamp, 1e-6);
+    EXPECT_GE(received_at, previous);
+    EXPECT_LT(now - received_at, 120.0);
+    previous = received_at;
+    ++rows;
+  }
+  EXPECT_EQ(rows, kPoses);
 
   const auto map = io::read_bt(out("map.bt").string());
   EXPECT_EQ(io::occupied_cell_centres(*map).size(), occupied);
