@@ -4,7 +4,8 @@
 # Idempotent: installs only what is missing, so repeated runs cost a dpkg query.
 set -euo pipefail
 
-PACKAGES=(
+# Compiling the project (also the image's build stage: docker/Dockerfile runs `install-deps.sh --build`).
+BUILD_PACKAGES=(
   # build
   build-essential cmake ninja-build ccache pkg-config git
   # algorithm core
@@ -15,11 +16,36 @@ PACKAGES=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   # config, command line, output
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libpng-dev
+  # GoogleTest: CMake requires it even when only the processes are built
+  libgtest-dev libgmock-dev
+)
+
+# Only what the built processes link at run time, no dev packages (the image's runtime stage:
+# `install-deps.sh --runtime`; `ldd build/bin/*` lists them).
+RUNTIME_PACKAGES=(
+  libfastrtps2.9 libfastcdr1 liboctomap1.9 libyaml-cpp0.7 libpng16-16 liblz4-1 zlib1g
+)
+
+# The rest of `make test` and `make bench` on the host (never in the image).
+HOST_PACKAGES=(
   # tests and benchmarks; clang's libFuzzer for the log readers (make fuzz); clang-format (make format-check)
-  libgtest-dev libgmock-dev libbenchmark-dev clang libclang-rt-14-dev clang-format
+  libbenchmark-dev clang libclang-rt-14-dev clang-format
   # the benchmark tables (make bench, make real-logs)
   python3
+  # the two-host link emulation tests (ctest -L twohost): NFQUEUE delay/loss tool, per-namespace rules
+  libnetfilter-queue-dev iptables
+  # the container test (ctest -L docker, test/docker/test_compose.sh): Podman with runc (apt would pick
+  # crun, which fails on hybrid cgroups), docker-compose 1.29 against Podman's socket, debootstrap for
+  # the base image (no registry is reachable)
+  podman runc docker-compose debootstrap
 )
+
+case "${1:-}" in
+  "") PACKAGES=("${BUILD_PACKAGES[@]}" "${HOST_PACKAGES[@]}") ;;
+  --build) PACKAGES=("${BUILD_PACKAGES[@]}") ;;
+  --runtime) PACKAGES=("${RUNTIME_PACKAGES[@]}") ;;
+  *) echo "usage: install-deps.sh [--build | --runtime]  (no option: everything the host needs)" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,6 +1,9 @@
 // Between the DDS threads and the matching thread: IMU and odometry samples queue up (the pipeline
-// needs them all, in order); scans do not. A new scan replaces one still waiting, which is counted
-// as skipped, so a matcher that falls behind works on the freshest scan and memory stays bounded.
+// needs them all, in order); scans queue up only within a backlog: a waiting scan older than the
+// newest by more than max_backlog_s (sensor time) is dropped and counted as skipped. So scans that
+// arrive in a burst (a RELIABLE reader delivers in order, and a fragment resent over a lossy link
+// holds back the scans behind it) are all matched, while a matcher that falls behind works on
+// fresh scans and memory stays bounded. A backlog of 0 keeps only the newest scan.
 #pragma once
 
 #include <chrono>
@@ -27,16 +30,20 @@ class ScanQueue {
   // max_samples: a bound on waiting IMU samples, and on waiting odometry samples (the oldest go
   // first) should the matcher stall. wait_for_odometry: the matcher uses the odometry, so the
   // grace of wait_for_scan waits for it too.
-  explicit ScanQueue(bool wait_for_odometry = false, std::size_t max_samples = 2000);
+  // max_backlog_s: how far (sensor time) the oldest waiting scan may lag the newest.
+  explicit ScanQueue(bool wait_for_odometry = false, double max_backlog_s = kDefaultBacklog,
+                     std::size_t max_samples = 2000);
+
+  static constexpr double kDefaultBacklog = 0.25;  // s: 10 scans at 40 Hz
 
   void push_scan(ReceivedScan scan);
   void push_imu(const ImuSample& sample);
   void push_odometry(const OdometrySample& sample);
 
-  // Waits up to `timeout` for a scan; returns it with every IMU and odometry sample received so
-  // far. `grace`: after a scan arrives, how long to wait for an IMU sample (and, when waited for,
-  // an odometry sample) stamped at or after it, so its orientation and odometry position are
-  // interpolated rather than missing.
+  // Waits up to `timeout` for a scan; returns the oldest waiting one with every IMU and odometry
+  // sample received so far. `grace`: after a scan arrives, how long to wait for an IMU sample (and,
+  // when waited for, an odometry sample) stamped at or after it, so its orientation and odometry
+  // position are interpolated rather than missing.
   struct Work {
     ReceivedScan scan;
     std::deque<ImuSample> imu;
@@ -51,11 +58,13 @@ class ScanQueue {
   std::uint64_t odometry_received() const;
 
  private:
-  double scan_stamp_locked() const;
+  static double stamp_of(const ReceivedScan& scan);
+  void drop_stale_scans_locked();
 
   mutable std::mutex mutex_;
   std::condition_variable changed_;
-  std::optional<ReceivedScan> scan_;
+  std::deque<ReceivedScan> scans_;
+  double max_backlog_s_;
   std::deque<ImuSample> imu_;
   std::deque<OdometrySample> odometry_;
   bool wait_for_odometry_;

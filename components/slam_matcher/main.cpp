@@ -43,6 +43,7 @@ struct MatcherOptions {
   std::string slam_config;
   std::vector<double> initial_position;  // empty: the scenario's first waypoint
   bool geometry_from_scan = false;       // the beam layout of each scan message; no scenario
+  double max_scan_backlog_s = matcher::ScanQueue::kDefaultBacklog;
 };
 
 double wall_seconds() {
@@ -73,7 +74,8 @@ class MatcherNode {
         config_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
         geometry_(o.geometry_from_scan ? nullptr : sim::make_scan_geometry(scenario_.lidar)),
         slam_(config_, initial_position(o)),
-        queue_(uses_odometry(config_)),
+        queue_(uses_odometry(config_), o.max_scan_backlog_s),
+        max_scan_backlog_s_(o.max_scan_backlog_s),
         // The odometry is as much "at the scan's time" as the orientation: the same tolerance.
         odometry_prior_(config_.imu.max_gap),
         participant_(node.domain, process::profiles_path(node), node.participant_profile,
@@ -201,9 +203,10 @@ class MatcherNode {
 
   void print_summary() const {
     std::cerr << "slam_matcher: " << queue_.scans_received() << " scans received, "
-              << queue_.scans_skipped() << " skipped (a fresher one was waiting), " << poses_
-              << " poses published, " << rejected_ << " rejected, map " << slam_.map().size()
-              << " points from " << keyframes_ << " keyframes\n";
+              << queue_.scans_skipped() << " skipped (over " << max_scan_backlog_s_
+              << " s behind a newer one), " << poses_ << " poses published, " << rejected_
+              << " rejected, map " << slam_.map().size() << " points from " << keyframes_
+              << " keyframes\n";
     if (odometry_) {
       std::cerr << "slam_matcher: odometry prior: " << queue_.odometry_received()
                 << " odometry samples received, " << odometry_prior_.rejected()
@@ -221,6 +224,7 @@ class MatcherNode {
   dds::MessageScanGeometry message_geometry_;
   SlamPipeline slam_;
   matcher::ScanQueue queue_;
+  double max_scan_backlog_s_;
   OdometryPrior odometry_prior_;
   process::QosWatch qos_{"slam_matcher"};
   dds::Participant participant_;
@@ -237,7 +241,8 @@ class MatcherNode {
 };
 
 void apply_own_config(const CLI::App& app, const io::YamlReader& section, MatcherOptions& o) {
-  section.expect_keys_only({"sensor", "slam_config", "initial_position", "geometry_from_scan"});
+  section.expect_keys_only(
+      {"sensor", "slam_config", "initial_position", "geometry_from_scan", "max_scan_backlog_s"});
   if (process::unset(app, "--sensor")) o.sensor = section.get_string_or("sensor", o.sensor);
   if (process::unset(app, "--slam-config")) {
     o.slam_config = section.get_string_or("slam_config", o.slam_config);
@@ -248,6 +253,10 @@ void apply_own_config(const CLI::App& app, const io::YamlReader& section, Matche
   }
   if (process::unset(app, "--geometry-from-scan")) {
     o.geometry_from_scan = section.get_bool_or("geometry_from_scan", o.geometry_from_scan);
+  }
+  if (process::unset(app, "--max-scan-backlog")) {
+    o.max_scan_backlog_s = section.get_double_or("max_scan_backlog_s", o.max_scan_backlog_s,
+                                                 io::NumberRange::non_negative());
   }
 }
 
@@ -278,6 +287,12 @@ int main(int argc, char** argv) {
                "take the beam layout from each scan message (angle_min, angle_increment, "
                "range_min/max) as a planar scanner at the body origin, instead of --sensor: for "
                "replayed 2D logs (lidar_driver --source carmen:FILE)");
+  app.add_option("--max-scan-backlog", options.max_scan_backlog_s,
+                 "seconds (sensor time) a waiting scan may lag the newest one before it is "
+                 "skipped: scans arriving in a burst (a lossy link) are all matched, a matcher "
+                 "that falls behind keeps to fresh ones; 0 keeps only the newest")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("slam_matcher", [&] {

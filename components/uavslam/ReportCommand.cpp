@@ -61,8 +61,7 @@ int run_report(const ReportOptions& o) {
             << "  scans             " << truth.size() << " published, "
             << status.at("scans_received").get<std::uint64_t>() << " received by the matcher, "
             << status.at("scans_accepted").get<std::uint64_t>() << " matched, "
-            << status.at("scans_skipped").get<std::uint64_t>()
-            << " skipped (a fresher one waiting), "
+            << status.at("scans_skipped").get<std::uint64_t>() << " skipped (behind newer ones), "
             << status.at("scans_rejected").get<std::uint64_t>() << " rejected\n"
             << "  ground station    " << poses.size() << " poses at " << std::setprecision(1)
             << summary.at("poses").at("rate_hz").get<double>() << " Hz; map snapshot "
