@@ -75,6 +75,16 @@ struct SlamConfig {
     double min_point_spacing = 0.0;
   } map;
 
+  // Beyond the seed: after a gap in the scans longer than `gap` (a link outage, a dropout) the
+  // last position is stale, and the ICP is started from a grid of positions over the disc the
+  // vehicle can have covered (core/Relocalisation). Inert while scans come at the sensor's rate.
+  struct Recovery {
+    double gap = 0.5;         // s without a scan that makes the last position stale (0: never)
+    double max_speed = 2.0;   // m/s; the disc's radius is max_speed x gap ...
+    double max_radius = 3.0;  // m; ... at most this
+    double grid_step = 0.5;   // m between starts: under twice the pairing gate, so one converges
+  } recovery;
+
   // Orientation source: how far apart the IMU samples around a scan may be.
   struct Imu {
     double max_gap = 0.1;  // s; a scan with no IMU sample this close is dropped

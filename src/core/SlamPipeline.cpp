@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/Heading.hpp"
+#include "core/Relocalisation.hpp"
 #include "core/SurfaceNormals.hpp"
 
 namespace uavslam {
@@ -74,8 +75,16 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
   const Vec3 predicted = heading_correction_ == 0.0
                              ? predicted_motion
                              : yaw_rotation(heading_correction_) * predicted_motion;
+  const Pose start{scan.stamp, pose_.position + predicted, orientation};
+  report.relocalised = stale(scan.stamp);
   const MatchResult match =
-      this->match(points, {scan.stamp, pose_.position + predicted, orientation});
+      report.relocalised
+          ? relocalise(matcher_, map_, points,
+                       search_starts(start.position,
+                                     search_radius(config_.recovery, scan.stamp - pose_.stamp),
+                                     config_.recovery.grid_step),
+                       config_.icp.heading == "every_scan")
+          : this->match(points, start);
   report.outcome = match.outcome;
   report.error_before = match.error_before;
   report.error_after = match.error_after;
@@ -121,6 +130,11 @@ MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted)
   }
   ++scans_since_heading_check_;
   return matcher_.match(map_, points, start, false, &nearest_);
+}
+
+// A gap in the scans longer than recovery.gap since the last pose: the vehicle may be far from it.
+bool SlamPipeline::stale(double stamp) const {
+  return config_.recovery.gap > 0.0 && stamp - pose_.stamp > config_.recovery.gap;
 }
 
 bool SlamPipeline::heading_check_due(const Pose& predicted) const {

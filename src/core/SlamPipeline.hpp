@@ -28,6 +28,8 @@ struct ScanReport {
   // The match failed and the pose is the predicted one (the last pose moved by the motion prior):
   // the vehicle went where the other source says, not where it was.
   bool dead_reckoned = false;
+  // After a gap in the scans the ICP searched a grid of starts (core/Relocalisation).
+  bool relocalised = false;
   std::size_t map_size = 0;
   Points added_points;  // what this scan added to the map (empty unless map_updated)
 
@@ -63,6 +65,7 @@ class SlamPipeline {
   Eigen::Quaterniond corrected(const Eigen::Quaterniond& source_orientation) const;
   bool heading_check_due(const Pose& predicted) const;
   MatchResult match(const ScanPoints& points, const Pose& predicted);
+  bool stale(double stamp) const;
   bool moved_enough_for_map_update(const Pose& pose) const;
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
 

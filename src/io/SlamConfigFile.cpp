@@ -118,6 +118,22 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.map.min_point_spacing = v.as_double(NumberRange::non_negative());
        }},
+      {"recovery", "gap",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.recovery.gap = v.as_double(NumberRange::non_negative());
+       }},
+      {"recovery", "max_speed",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.recovery.max_speed = v.as_double(NumberRange::non_negative());
+       }},
+      {"recovery", "max_radius",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.recovery.max_radius = v.as_double(NumberRange::non_negative());
+       }},
+      {"recovery", "grid_step",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.recovery.grid_step = v.as_double(NumberRange::positive());
+       }},
       {"imu", "max_gap",
        [](SlamConfig& c, const YamlReader& v) {
          c.imu.max_gap = v.as_double(NumberRange::positive());

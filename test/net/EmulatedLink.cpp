@@ -241,7 +241,7 @@ void EmulatedLink::build(const LinkSpec& spec, const std::string& emulator_path,
                 "rate", format_number(spec.rate_mbit) + "mbit", "burst", std::to_string(burst),
                 "latency", kTbfLatency});
     }
-    if (spec.delay_ms > 0.0 || spec.jitter_ms > 0.0) {
+    if (spec.delay_ms > 0.0 || spec.jitter_ms > 0.0 || spec.record_traffic) {
       // The emulator binds its queue first: a packet sent to an unbound queue is dropped.
       start_emulator(host, spec, emulator_path, log_dir);
       iptables(host, {"-A", "OUTPUT", "-o", interface_name(host), "-j", "NFQUEUE", "--queue-num",
@@ -266,6 +266,11 @@ void EmulatedLink::start_emulator(Host host, const LinkSpec& spec, const std::st
         std::string("--loss"), format_number(spec.loss), std::string("--seed"),
         std::to_string(seed)}) {
     argv.push_back(arg);
+  }
+  if (spec.record_traffic) {
+    std::string& file = host == Host::kUav ? uav_traffic_file_ : gcs_traffic_file_;
+    file = log_dir + "/link_traffic_" + namespace_name(host) + ".json";
+    argv.insert(argv.end(), {"--traffic", file});
   }
   const std::string log = log_dir + "/link_emulator_" + namespace_name(host) + ".log";
   emulators_.push_back(std::make_unique<process::ChildProcess>(argv, log, true));
@@ -356,6 +361,10 @@ std::string EmulatedLink::stop_emulators() {
   }
   emulators_.clear();
   return emulator_output_;
+}
+
+std::string EmulatedLink::traffic_file(Host from) const {
+  return from == Host::kUav ? uav_traffic_file_ : gcs_traffic_file_;
 }
 
 void EmulatedLink::tear_down() noexcept {

@@ -5,7 +5,8 @@
 //  - one-way delay (+ jitter, + loss): iptables in each namespace sends what leaves its veth to
 //    an NFQUEUE served by link_emulator, started inside that namespace;
 //  - loss alone: iptables `-m statistic --mode random` drops that share of what arrives;
-//  - outage: every packet arriving on either veth is dropped until it ends.
+//  - outage: every packet arriving on either veth is dropped until it ends;
+//  - traffic: the emulators also count the bytes of each DDS topic leaving their side.
 // This kernel has no netem. All rules live inside the two namespaces, never in the host's own
 // tables; deleting the namespaces removes the veths, qdiscs and rules with them. The destructor
 // does that (and stops the emulators), also when a test fails or throws. Needs root.
@@ -32,6 +33,9 @@ struct LinkSpec {
   double jitter_ms = 0.0;  // delay spread, +-; packets keep their order
   double loss = 0.0;       // share of packets lost in each direction, 0..1
   std::uint64_t seed = 1;  // seeds the emulator's losses (with delay; the uav side uses seed + 1)
+  // Per-topic bytes of each direction (link_emulator --traffic; traffic_file): starts the
+  // emulators even without delay (they then also make the losses, instead of iptables).
+  bool record_traffic = false;
 };
 
 struct LinkAvailability {
@@ -79,8 +83,12 @@ class EmulatedLink {
   void outage(std::chrono::milliseconds length);
 
   // Stops the link emulators (they print their counters) and returns their output, uav first;
-  // empty when the spec has no delay. Later calls return the same text.
+  // empty when none runs (no delay, jitter or record_traffic). Later calls return the same text.
   std::string stop_emulators();
+
+  // The JSON file of what `from` put on the link, per DDS topic (link_emulator --traffic), written
+  // when stop_emulators() returns; empty when the spec does not record traffic.
+  std::string traffic_file(Host from) const;
 
  private:
   struct Tools {
@@ -99,6 +107,8 @@ class EmulatedLink {
   std::string gcs_namespace_;
   std::vector<std::unique_ptr<process::ChildProcess>> emulators_;
   std::string emulator_output_;
+  std::string uav_traffic_file_;
+  std::string gcs_traffic_file_;
   bool outage_active_ = false;
 };
 

@@ -21,6 +21,9 @@ namespace {
 
 // Large enough that a burst at the link rate does not overflow the socket before we read it.
 constexpr unsigned kSocketBufferBytes = 8u << 20;
+// An IP packet's largest size, and one netlink message of such a packet with its attributes.
+constexpr unsigned kMaxPacketBytes = 0xffff;
+constexpr std::size_t kReceiveBufferBytes = 0x20000;
 
 [[noreturn]] void fail(const std::string& what) {
   throw std::runtime_error(what + ": " + std::strerror(errno));
@@ -28,7 +31,7 @@ constexpr unsigned kSocketBufferBytes = 8u << 20;
 
 }  // namespace
 
-NetfilterQueue::NetfilterQueue(std::uint16_t number, std::uint32_t max_length,
+NetfilterQueue::NetfilterQueue(std::uint16_t number, std::uint32_t max_length, bool copy_packets,
                                PacketHandler on_packet)
     : number_(number), on_packet_(std::move(on_packet)) {
   library_ = nfq_open();
@@ -39,9 +42,10 @@ NetfilterQueue::NetfilterQueue(std::uint16_t number, std::uint32_t max_length,
     fail("cannot bind NFQUEUE " + std::to_string(number) +
          " (needs root, and no other program on that queue)");
   }
-  // Only the packet id is needed: the payload goes back unchanged with the verdict.
-  if (nfq_set_mode(queue_, NFQNL_COPY_META, 0) < 0 ||
-      nfq_set_queue_maxlen(queue_, max_length) < 0 ||
+  // The payload goes back unchanged with the verdict: copied only when someone looks into it.
+  const int copied = copy_packets ? nfq_set_mode(queue_, NFQNL_COPY_PACKET, kMaxPacketBytes)
+                                  : nfq_set_mode(queue_, NFQNL_COPY_META, 0);
+  if (copied < 0 || nfq_set_queue_maxlen(queue_, max_length) < 0 ||
       nfq_set_queue_flags(queue_, NFQA_CFG_F_GSO | NFQA_CFG_F_FAIL_OPEN, NFQA_CFG_F_GSO) < 0) {
     nfq_destroy_queue(queue_);
     nfq_close(library_);
@@ -61,12 +65,16 @@ int NetfilterQueue::on_message(nfq_q_handle*, nfgenmsg*, nfq_data* packet, void*
   if (header == nullptr) return 0;
   auto* queue = static_cast<NetfilterQueue*>(self);
   const std::uint32_t id = ntohl(header->packet_id);
-  if (!queue->on_packet_(id)) queue->drop(id);
+  unsigned char* payload = nullptr;
+  const int length = nfq_get_payload(packet, &payload);
+  const bool kept = length > 0 ? queue->on_packet_(id, payload, static_cast<std::size_t>(length))
+                               : queue->on_packet_(id, nullptr, 0);
+  if (!kept) queue->drop(id);
   return 0;
 }
 
 void NetfilterQueue::receive() {
-  std::vector<char> buffer(0x10000);
+  std::vector<char> buffer(kReceiveBufferBytes);
   for (;;) {
     const ssize_t length = recv(fd_, buffer.data(), buffer.size(), MSG_DONTWAIT);
     if (length >= 0) {

@@ -4,6 +4,7 @@
 // fail open: when it is full the kernel drops the packet and counts it (overflow_drops).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -23,11 +24,15 @@ struct QueueDrops {
 class NetfilterQueue {
  public:
   // Returns true when it keeps the packet (its verdict comes later through accept or drop), false
-  // to drop it at once.
-  using PacketHandler = std::function<bool(std::uint32_t packet_id)>;
+  // to drop it at once. `packet`/`length`: the IP packet when the queue copies packets, else
+  // nullptr and 0.
+  using PacketHandler =
+      std::function<bool(std::uint32_t packet_id, const std::uint8_t* packet, std::size_t length)>;
 
   // Binds queue `number`; throws std::runtime_error saying what failed (not root, queue taken).
-  NetfilterQueue(std::uint16_t number, std::uint32_t max_length, PacketHandler on_packet);
+  // `copy_packets`: the kernel copies each packet to us (to look into it), not only its id.
+  NetfilterQueue(std::uint16_t number, std::uint32_t max_length, bool copy_packets,
+                 PacketHandler on_packet);
   NetfilterQueue(const NetfilterQueue&) = delete;
   NetfilterQueue& operator=(const NetfilterQueue&) = delete;
   ~NetfilterQueue();

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "SyntheticRoom.hpp"
+#include "core/Relocalisation.hpp"
 #include "core/SlamPipeline.hpp"
 
 namespace uavslam {
@@ -216,6 +217,56 @@ TEST_F(PipelineInRoom, ARejectedScanWithAPriorIsDeadReckoned) {
   EXPECT_TRUE(r.dead_reckoned);
   EXPECT_TRUE(r.pose.position.isApprox(start + Vec3(0.2, 0, 0)));
   EXPECT_TRUE(slam.pose().position.isApprox(start + Vec3(0.2, 0, 0)));
+}
+
+// Beyond the seed: after 2 s without scans (a link outage) the vehicle is 2.4 m on, beyond the
+// seed's 1 m correction limit from the last position. With the recovery the ICP searches a grid
+// of starts around it and finds the vehicle; without it (recovery.gap 0, the seed) it cannot.
+TEST_F(PipelineInRoom, AfterAGapInTheScansTheMatcherFindsTheVehicleAgain) {
+  config.nearest_neighbour.index = "exact";
+  const auto truth_at = [&](double t) -> Vec3 { return start + Vec3(0.8 * t, 0.2 * t, 0.0); };
+  const auto fly = [&](SlamPipeline& slam) {
+    for (int k = 0; k <= 40; ++k) {  // 1 s of scans, then nothing until t = 3 s
+      const double t = k / 40.0;
+      slam.add_imu(level_imu(t));
+      EXPECT_TRUE(slam.process_scan(room.scan_at(pose_at(truth_at(t), t), t)).accepted()) << k;
+    }
+    slam.add_imu(level_imu(3.0));
+    return slam.process_scan(room.scan_at(pose_at(truth_at(3.0), 3.0), 3.0));
+  };
+
+  SlamPipeline recovering(config, start);
+  const ScanReport found = fly(recovering);
+  EXPECT_TRUE(found.relocalised);
+  ASSERT_TRUE(found.accepted()) << to_string(found.outcome);
+  EXPECT_LT((found.pose.position - truth_at(3.0)).head<2>().norm(), 0.05);
+
+  config.recovery.gap = 0.0;
+  SlamPipeline seed(config, start);
+  const ScanReport lost = fly(seed);
+  EXPECT_FALSE(lost.relocalised);
+  EXPECT_FALSE(lost.accepted() && (lost.pose.position - truth_at(3.0)).head<2>().norm() < 0.5)
+      << "the seed's single start cannot reach the vehicle 2.4 m away";
+}
+
+// The search grid: the start itself first, then outwards, all within the radius.
+TEST(Relocalisation, TheStartsCoverTheDiscNearestFirst) {
+  const Vec3 centre(1.0, 2.0, 1.5);
+  const std::vector<Vec3> starts = search_starts(centre, 1.0, 0.5);
+  ASSERT_FALSE(starts.empty());
+  EXPECT_TRUE(starts.front().isApprox(centre));
+  EXPECT_EQ(starts.size(), 13u);  // (0,0), 4 at 0.5, 4 at 0.71, 4 at 1.0
+  double previous = 0.0;
+  for (const Vec3& s : starts) {
+    const double d = (s - centre).norm();
+    EXPECT_LE(d, 1.0 + 1e-9);
+    EXPECT_GE(d, previous - 1e-12);
+    EXPECT_EQ(s.z(), centre.z());
+    previous = d;
+  }
+  SlamConfig::Recovery recovery;
+  EXPECT_DOUBLE_EQ(search_radius(recovery, 0.5), 1.0);   // 2 m/s x 0.5 s
+  EXPECT_DOUBLE_EQ(search_radius(recovery, 10.0), 3.0);  // capped
 }
 
 }  // namespace
