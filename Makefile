@@ -9,7 +9,7 @@ JOBS       ?= $(shell nproc)
 export CCACHE_BASEDIR := $(CURDIR)
 UAVSLAM    := $(BUILD)/bin/uavslam
 
-.PHONY: all deps configure build demo simulate offline test test-unit test-asan fuzz bench bench-latency sweep real-logs \
+.PHONY: all deps configure build demo simulate offline test test-unit test-asan fuzz bench bench-latency bench-link sweep real-logs \
         format format-check clean
 
 all: build
@@ -84,6 +84,12 @@ bench-latency: build
 	$(BUILD)/test/bench/bench_latency --scenario config/scenarios/demo.yaml --duration 60
 	$(BUILD)/test/bench/bench_latency --scenario config/scenarios/demo.yaml --duration 60 \
 	  --realtime-priority 50
+
+# The system across an emulated WiFi link between two network namespaces (needs root; README
+# "Two hosts over WiFi"): loopback reference, matcher on board, matcher on the ground, an outage.
+bench-link: build
+	$(BUILD)/test/net/bench_link --scenario config/scenarios/demo.yaml --duration 60 \
+	  --outage-at 30 --out out/bench_link
 
 # Accuracy and time against ICP iterations and FLANN checks (README "Choosing the iteration count").
 sweep: build

@@ -1,5 +1,7 @@
 #include "dds/Participant.hpp"
 
+#include <chrono>
+
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
@@ -9,6 +11,7 @@
 #include <fastdds/dds/topic/qos/TopicQos.hpp>
 
 #include "dds/DdsError.hpp"
+#include "dds/LinkInterfaces.hpp"
 #include "dds/Profiles.hpp"
 
 namespace uavslam::dds {
@@ -19,6 +22,7 @@ using eprosima::fastrtps::types::ReturnCode_t;
 namespace {
 
 constexpr int kMaxDomainId = 232;  // the largest id whose ports fit Fast DDS's default port mapping
+constexpr std::chrono::seconds kInterfaceWait{30};  // for a link interface that is not up yet
 
 std::string quoted_list(const std::vector<std::string>& names) {
   std::string out;
@@ -57,6 +61,7 @@ Participant::Participant(int domain_id, const std::string& profiles_path,
     throw DdsError("unknown participant profile '" + participant_profile + "' in '" +
                    profiles_path + "'" + known_profiles(profiles_path, "participant"));
   }
+  wait_for_link_interfaces(qos, participant_profile, kInterfaceWait);
   const auto domain = static_cast<fdds::DomainId_t>(domain_id);
   if (name.empty()) {
     participant_ = factory->create_participant_with_profile(domain, participant_profile);

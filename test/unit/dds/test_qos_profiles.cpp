@@ -1,6 +1,7 @@
 // The QoS profile file: it loads, it defines every profile the processes use, the default
 // participant keeps DDS on loopback, and every way of getting it wrong is a DdsError that names
 // the file or the profile.
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <functional>
@@ -19,6 +20,7 @@
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 
 #include "dds/DdsError.hpp"
+#include "dds/LinkInterfaces.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Profiles.hpp"
 #include "dds/Reader.hpp"
@@ -29,6 +31,7 @@ namespace {
 
 namespace fdds = eprosima::fastdds::dds;
 using eprosima::fastrtps::types::ReturnCode_t;
+using testing::AllOf;
 using testing::HasSubstr;
 using testing::IsSupersetOf;
 
@@ -179,6 +182,22 @@ TEST(QosProfiles, TheLinkTransportsKeepDatagramsUnderTheWifiMtu) {
     }
   }
   EXPECT_EQ(udp, 1);
+}
+
+// The link profiles wait for their interface: on this host (no 10.200.0.x) the wait ends with an
+// error naming the address and the profile; the loopback profile's address always runs.
+TEST(QosProfiles, ALinkParticipantWaitsForItsInterfaceThenNamesIt) {
+  load_profiles(default_profiles_path());
+  fdds::DomainParticipantQos qos;
+  ASSERT_EQ(fdds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(
+                "uavslam_link_uav", qos),
+            ReturnCode_t::RETCODE_OK);
+  EXPECT_EQ(whitelisted_addresses(qos), std::vector<std::string>{"10.200.0.1"});
+  if (addresses_not_running({"10.200.0.1"}).empty()) GTEST_SKIP() << "this host has 10.200.0.1";
+  EXPECT_THAT(
+      error_of([&] { wait_for_link_interfaces(qos, "uavslam_link_uav", std::chrono::seconds(1)); }),
+      AllOf(HasSubstr("10.200.0.1"), HasSubstr("'uavslam_link_uav'")));
+  EXPECT_TRUE(addresses_not_running({"127.0.0.1"}).empty());
 }
 
 TEST(QosProfiles, AMalformedFileIsADdsErrorNamingIt) {
