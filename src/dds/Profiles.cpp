@@ -129,9 +129,18 @@ void load_profiles(const std::string& xml_path) {
   loaded_paths().insert(canonical);
 }
 
+// An installed tree (cmake --install: bin/, qos/, config/) keeps the profiles beside the
+// executables' directory; a build tree uses the source's qos/.
 std::string default_profiles_path() {
   const char* file = std::getenv("UAVSLAM_QOS_FILE");
   if (file != nullptr && *file != '\0') return file;
+  std::error_code error;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const std::filesystem::path installed =
+        exe.parent_path().parent_path() / "qos" / "uavslam_profiles.xml";
+    if (std::filesystem::exists(installed, error)) return installed.string();
+  }
   return UAVSLAM_QOS_DIR "/uavslam_profiles.xml";
 }
 

@@ -13,7 +13,8 @@ namespace uavslam::dds {
 // file or one Fast DDS rejects (the reason quotes Fast DDS's XML parser errors). Thread-safe.
 void load_profiles(const std::string& xml_path);
 
-// $UAVSLAM_QOS_FILE if set and non-empty, else the shipped qos/uavslam_profiles.xml.
+// $UAVSLAM_QOS_FILE if set and non-empty; else, in an installed tree (bin/ beside qos/), its
+// qos/uavslam_profiles.xml; else the source tree's qos/uavslam_profiles.xml.
 std::string default_profiles_path();
 
 // The profile_name attributes of the <element> profiles ("participant", "data_writer",

@@ -108,6 +108,7 @@ std::vector<std::string> TwoHostFlight::sensor_flags(int subscribers) const {
 
 void TwoHostFlight::start(double lead_s) {
   start_at_ = system_now() + lead_s;
+  if (link_ && spec_.discovery_server) start_discovery_server();
   const bool ground = spec_.matcher_host == Host::kGcs;
   std::vector<std::string> station{"--out", out("gcs")};
   if (!spec_.station_latency) station.push_back("--no-latency");
@@ -115,6 +116,7 @@ void TwoHostFlight::start(double lead_s) {
   if (spec_.map_server)
     map_server_ = &launch(spec_.matcher_host, "map_server", {"--out", out("map")});
   std::vector<std::string> matcher{"--sensor", spec_.scenario};
+  matcher.insert(matcher.end(), spec_.matcher_flags.begin(), spec_.matcher_flags.end());
   if (ground) matcher.insert(matcher.end(), {"--profile", "scan=sensor_link_reader"});
   matcher_ = &launch(spec_.matcher_host, "slam_matcher", matcher);
   imu_ = &launch(Host::kUav, "imu_bridge", sensor_flags(1));
@@ -122,6 +124,16 @@ void TwoHostFlight::start(double lead_s) {
   lidar.insert(lidar.end(), {"--groundtruth", out("groundtruth.tum")});
   if (ground) lidar.insert(lidar.end(), {"--profile", "scan=sensor_link_writer"});
   lidar_ = &launch(Host::kUav, "lidar_driver", lidar);
+}
+
+// As uav_discovery_server.yaml runs it: the server on the UAV at 10.200.0.1:11811, from the
+// uavslam_discovery_server profile.
+void TwoHostFlight::start_discovery_server() {
+  std::vector<std::string> argv = link_->exec_prefix(Host::kUav);
+  argv.insert(argv.end(), {"/usr/bin/fast-discovery-server", "-x",
+                           "uavslam_discovery_server@" + spec_.qos_file});
+  processes_.push_back(std::make_unique<process::ChildProcess>(argv, out("discovery_server.log")));
+  if (!processes_.back()->started()) throw std::runtime_error("cannot start the discovery server");
 }
 
 FlightResult TwoHostFlight::finish(std::chrono::seconds timeout) {

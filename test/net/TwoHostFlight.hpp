@@ -27,8 +27,12 @@ struct FlightSpec {
   double duration_s = 0.0;  // of the flight; 0: the whole scenario
   Host matcher_host = Host::kUav;
   bool map_server = true;
-  bool station = true;          // a ground station from the start
-  bool station_latency = true;  // it subscribes scans to measure latency
+  bool discovery_server = false;  // a Fast DDS discovery server on the UAV, every process its
+                                  // client (uavslam_link_*_client), instead of unicast peers
+  std::string qos_file;           // the profiles the discovery server reads (-x profile@file)
+  std::vector<std::string> matcher_flags;  // more slam_matcher flags
+  bool station = true;                     // a ground station from the start
+  bool station_latency = true;             // it subscribes scans to measure latency
 };
 
 struct FlightResult {
@@ -78,6 +82,7 @@ class TwoHostFlight {
 
  private:
   std::vector<std::string> sensor_flags(int subscribers) const;
+  void start_discovery_server();
 
   FlightSpec spec_;
   const EmulatedLink* link_;

@@ -34,6 +34,8 @@ struct BenchOptions {
   double outage_at_s = 30.0;
   double outage_s = 2.0;
   int domain = 226;
+  bool discovery_server = false;
+  std::string max_scan_backlog;  // empty: the matcher's default
 };
 
 double system_now() {
@@ -85,6 +87,10 @@ class LinkBenchmark {
     spec.domain = o_.domain + domain_offset_++;
     spec.duration_s = o_.duration_s;
     spec.matcher_host = matcher_host;
+    spec.discovery_server = o_.discovery_server;
+    spec.qos_file = std::string(UAVSLAM_SOURCE_DIR) + "/qos/uavslam_profiles.xml";
+    if (!o_.max_scan_backlog.empty())
+      spec.matcher_flags = {"--max-scan-backlog", o_.max_scan_backlog};
     Run run{name, {}, {}, {}, std::nullopt, 0};
     double outage_end = 0.0;
     {
@@ -212,7 +218,11 @@ int run_benchmark(const BenchOptions& o) {
 
   std::cout << "Link: " << o.delay_ms << " ms one way, " << 100.0 * o.loss << " % loss each way, "
             << o.rate_mbit << " Mbit/s; " << o.duration_s << " s of " << o.scenario
-            << " in real time; outage " << o.outage_s << " s at " << o.outage_at_s << " s\n\n";
+            << " in real time; outage " << o.outage_s << " s at " << o.outage_at_s << " s; "
+            << (o.discovery_server ? "discovery server" : "unicast peer discovery")
+            << (o.max_scan_backlog.empty() ? ""
+                                           : "; matcher --max-scan-backlog " + o.max_scan_backlog)
+            << "\n\n";
   print_table(runs, runs.front().result.errors.ate_horizontal_rmse, "uav1");
   nlohmann::json all = nlohmann::json::array();
   for (const Run& run : runs) all.push_back(to_json(run));
@@ -250,6 +260,11 @@ int main(int argc, char** argv) {
   app.add_option("--domain", o.domain, "first DDS domain id (one per run)")
       ->capture_default_str()
       ->check(CLI::Range(0, 229));
+  app.add_flag("--discovery-server", o.discovery_server,
+               "discover through a Fast DDS discovery server on the UAV (uavslam_link_*_client "
+               "profiles) instead of unicast initial peers");
+  app.add_option("--max-scan-backlog", o.max_scan_backlog,
+                 "passed to the matcher (0: keep only the newest scan, as before the backlog)");
   CLI11_PARSE(app, argc, argv);
   uavslam::process::install_stop_handler();
   std::filesystem::create_directories(o.out);

@@ -54,7 +54,8 @@ class TwoHosts : public test::ProcessTest {
     ProcessTest::TearDown();
   }
 
-  net::TwoHostFlight& fly(int domain, Host matcher_host, double rate, bool station = true) {
+  net::TwoHostFlight& fly(int domain, Host matcher_host, double rate, bool station = true,
+                          bool discovery_server = false) {
     net::FlightSpec spec;
     spec.bin_dir = UAVSLAM_BIN_DIR;
     spec.scenario = kScenario;
@@ -63,6 +64,8 @@ class TwoHosts : public test::ProcessTest {
     spec.rate = rate;
     spec.matcher_host = matcher_host;
     spec.station = station;
+    spec.discovery_server = discovery_server;
+    spec.qos_file = std::string(UAVSLAM_SOURCE_DIR) + "/qos/uavslam_profiles.xml";
     flight_ = std::make_unique<net::TwoHostFlight>(spec, link_.get());
     flight_->start();
     return *flight_;
@@ -90,6 +93,19 @@ TEST_F(TwoHosts, MatcherOnBoardServesARemoteGroundStation) {
   EXPECT_GE(r.poses_at_station, r.poses_published * 98 / 100);
   EXPECT_GT(r.station["map"]["snapshots_received"].get<int>(), 0);
   EXPECT_LT(r.errors.ate_horizontal_rmse, 0.10);
+}
+
+// The deployment of uav_discovery_server.yaml / ground_discovery_server.yaml: a Fast DDS discovery
+// server on the UAV, every process on both hosts its client.
+TEST_F(TwoHosts, TheDiscoveryServerVariantJoinsTheHosts) {
+  const net::FlightResult r = fly(204, Host::kUav, 4.0, true, true).finish(90s);
+  report(r);
+  ASSERT_EQ(r.failure, "");
+  EXPECT_GE(r.matched_share(), 0.9);
+  // The station's pose reader may match a moment after its scan reader (the sensors wait for
+  // the latter): the first poses of the flight can go before it is there.
+  EXPECT_GE(r.poses_at_station, r.poses_published * 95 / 100);
+  EXPECT_GT(r.station["map"]["snapshots_received"].get<int>(), 0);
 }
 
 TEST_F(TwoHosts, MatcherOnTheGroundMatchesScansThatCrossTheLink) {
