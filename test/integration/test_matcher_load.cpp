@@ -1,8 +1,8 @@
 // The matcher falling behind: the sensors publish the short flight at 4x real time (160 scans/s)
 // to a matcher made slow on purpose (brute-force search, 40 iterations: tens of ms per scan). It
-// must work on the freshest scan and count the rest as skipped, never queue them: so it reaches
-// the flight's last scan soon after the LiDAR stops (a queue would take minutes to drain) and its
-// memory stays bounded.
+// must keep to fresh scans, skipping and counting those more than its backlog (0.25 s of sensor
+// time) behind the newest, never queue them all: so it reaches the flight's last scan soon after
+// the LiDAR stops (a queue would take minutes to drain) and its memory stays bounded.
 #include <sys/types.h>
 
 #include <chrono>
