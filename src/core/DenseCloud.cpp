@@ -110,8 +110,8 @@ void DenseCloud::accumulate(const Placed& placed, double time) {
 void DenseCloud::make_room_for(std::size_t more_voxels) {
   if (2 * (voxel_count_ + more_voxels) <= table_.size()) return;
   std::size_t capacity = std::max<std::size_t>(1024, table_.size());
-  while (2 * (voxel_count_ + more_voxels) > capacity) capacity *= 4;
-  const std::vector<Voxel> old = std::move(table_);
+  while (2 * (voxel_count_ + more_voxels) > capacity) capacity *= 2;
+  const std::vector<Voxel, HugePageAllocator<Voxel>> old = std::move(table_);
   table_.assign(capacity, Voxel{});
   const std::size_t mask = capacity - 1;
   for (const Voxel& v : old) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/HugePageAllocator.hpp"
 #include "core/Types.hpp"
 
 namespace uavslam {
@@ -61,7 +62,7 @@ class DenseCloud {
   Vec3 corner_of(std::uint64_t key) const;
 
   double voxel_;
-  std::vector<Voxel> table_;
+  std::vector<Voxel, HugePageAllocator<Voxel>> table_;
   std::size_t voxel_count_ = 0;
   std::vector<Placed> placed_;  // one scan's, reused
   std::vector<DensePoint> unfiltered_;
