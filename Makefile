@@ -55,18 +55,18 @@ test-asan: deps
 	cmake --build $(BUILD_ASAN) -j$(JOBS) --target unit_tests
 	cd $(BUILD_ASAN) && ctest -L unit --output-on-failure -j$(JOBS)
 
-# The CARMEN and MCAP readers under libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS each:
+# The CARMEN, MCAP, SCIP 2.0 and MAVLink readers under libFuzzer (clang, with ASan and UBSan), FUZZ_SECONDS each:
 # seeds from test/fuzz/corpus, the inputs it finds kept in $(BUILD_FUZZ)/corpus for the next run;
 # a crash leaves its input as crash-* here and fails the target.
 fuzz: deps
 	CC=clang CXX=clang++ cmake -S . -B $(BUILD_FUZZ) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 	  -DUAVSLAM_FUZZ=ON -DUAVSLAM_BENCH=OFF
 	cmake --build $(BUILD_FUZZ) -j$(JOBS) --target fuzz_targets
-	for reader in carmen mcap; do \
+	for reader in carmen mcap scip2 mavlink; do \
 	  mkdir -p $(BUILD_FUZZ)/corpus/$$reader && \
 	  log=$(BUILD_FUZZ)/fuzz_$$reader.log; \
 	  if ! $(BUILD_FUZZ)/test/fuzz/fuzz_$${reader}_reader -max_total_time=$(FUZZ_SECONDS) \
-	      -rss_limit_mb=2048 -malloc_limit_mb=512 -print_final_stats=1 \
+	      -rss_limit_mb=2048 -malloc_limit_mb=512 -max_len=16384 -print_final_stats=1 \
 	      $(BUILD_FUZZ)/corpus/$$reader test/fuzz/corpus/$$reader > $$log 2>&1; then \
 	    tail -60 $$log; echo "fuzz: fuzz_$${reader}_reader failed (whole output: $$log)"; exit 1; \
 	  fi; \

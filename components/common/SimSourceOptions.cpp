@@ -18,13 +18,17 @@ std::optional<std::string> file_after(const std::string& source, const std::stri
 }
 
 // Empty when `source` names a source this process can read, else what is wrong with it.
-std::string source_problem(const std::string& source) {
+std::string source_problem(const std::string& source, const std::vector<std::string>& devices) {
   if (source == "sim" || has_file_prefix(source, kCarmenPrefix) ||
       has_file_prefix(source, kMcapPrefix)) {
     return {};
   }
-  return "expected sim, carmen:FILE (a CARMEN log) or mcap:FILE (an MCAP recording), got '" +
-         source + "'";
+  std::string expected = "sim, carmen:FILE (a CARMEN log), mcap:FILE (an MCAP recording)";
+  for (const std::string& prefix : devices) {
+    if (has_file_prefix(source, prefix)) return {};
+    expected += ", " + prefix + "ADDRESS";
+  }
+  return "expected " + expected + ", got '" + source + "'";
 }
 
 }  // namespace
@@ -41,9 +45,12 @@ void add_sim_source_options(CLI::App& app, SimSourceOptions& options) {
   app.add_option("--source", options.source,
                  "where the data comes from: sim (the flight simulator along --scenario), "
                  "carmen:FILE (replay a CARMEN log's laser scans, e.g. the Freiburg benchmark's "
-                 "intel.clf, at the recorded pace times --rate) or mcap:FILE (replay an MCAP "
-                 "recording's messages at their log_time spacing times --rate)")
-      ->check(CLI::Validator(source_problem, "sim|carmen:FILE|mcap:FILE", "source"))
+                 "intel.clf, at the recorded pace times --rate), mcap:FILE (replay an MCAP "
+                 "recording's messages at their log_time spacing times --rate), or a device "
+                 "(see the process's description)")
+      ->check(CLI::Validator(
+          [&options](std::string& value) { return source_problem(value, options.device_prefixes); },
+          "sim|carmen:FILE|mcap:FILE|DEVICE", "source"))
       ->capture_default_str();
   app.add_option("--scenario", options.scenario, "scenario YAML for the sim source")
       ->capture_default_str();
@@ -89,9 +96,8 @@ void apply_sim_source_config(const CLI::App& app, const io::YamlReader& section,
   if (unset(app, "--source") && section.has("source")) {
     const io::YamlReader source = section.at("source");
     options.source = source.as_string();
-    if (!source_problem(options.source).empty()) {
-      source.fail_expected("sim, carmen:FILE (a CARMEN log) or mcap:FILE (an MCAP recording)");
-    }
+    const std::string problem = source_problem(options.source, options.device_prefixes);
+    if (!problem.empty()) source.fail(problem);
   }
   if (unset(app, "--scenario")) {
     options.scenario = section.get_string_or("scenario", options.scenario);

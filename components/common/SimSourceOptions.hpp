@@ -1,6 +1,8 @@
 // The options of a sensor process whose data comes from a source: `sim` (the flight simulator
 // along a scenario), `carmen:FILE` (a recorded CARMEN log replayed at its recorded pace) or
-// `mcap:FILE` (an MCAP recording replayed at its log_time spacing); real devices come later.
+// `mcap:FILE` (an MCAP recording replayed at its log_time spacing), or a real device the process
+// names in `device_prefixes` (lidar_driver: scip2:, scip2tcp:; imu_bridge: mavlink:), whose
+// address the process itself checks when it opens it.
 #pragma once
 
 #include <cstddef>
@@ -23,6 +25,7 @@ struct SimSourceOptions {
   double duration = 0.0;         // s of the flight to publish from its start; 0: all of it
   double start_at = 0.0;  // system-clock time (s since the epoch) the flight starts; 0: when ready
   std::size_t max_scans = 0;  // carmen, mcap: replay only this many scans; 0: all of them
+  std::vector<std::string> device_prefixes;  // this process's device sources, e.g. "scip2:"
 };
 
 // The log of a `carmen:FILE` source; nullopt for `sim`.
@@ -31,7 +34,7 @@ std::optional<std::string> carmen_log_path(const SimSourceOptions& options);
 std::optional<std::string> mcap_log_path(const SimSourceOptions& options);
 
 // Registers --source, --scenario, --rate, --wait-for-subscribers, --duration, --start-at,
-// --max-scans.
+// --max-scans; `options.device_prefixes` must be set before (the --source check reads them).
 void add_sim_source_options(CLI::App& app, SimSourceOptions& options);
 // Fills what the command line left unset from the process's config section.
 // `extra_keys`: the process's own keys in the same section.

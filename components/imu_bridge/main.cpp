@@ -9,6 +9,7 @@
 // is the laser (the scan message carries no mount). Source `mcap:FILE`: the `imu` (or
 // `VEHICLE/imu`) channel of an MCAP recording, as recorded, at its log_time spacing (or `--rate`
 // times faster) on the file's timeline, which the lidar_driver replaying the same file shares.
+// Source `mavlink:udp:PORT` / `mavlink:serial:DEVICE:BAUD`: a real autopilot (MavlinkSource.hpp).
 #include <chrono>
 #include <iostream>
 #include <optional>
@@ -36,6 +37,7 @@
 #include "dds/SimulatedSensorMessages.hpp"
 #include "dds/Topics.hpp"
 #include "dds/Writer.hpp"
+#include "imu_bridge/MavlinkSource.hpp"
 #include "io/CarmenScanStream.hpp"
 #include "io/ScenarioFile.hpp"
 #include "sim/FlightSimulator.hpp"
@@ -172,7 +174,9 @@ int replay_recorded_imu(const process::NodeOptions& node, const process::SimSour
   return replayed ? qos.exit_code() : 1;
 }
 
-int publish(const process::NodeOptions& node, const process::SimSourceOptions& o) {
+int publish(const process::NodeOptions& node, const process::SimSourceOptions& o,
+            const process::MavlinkOptions& mavlink) {
+  if (process::is_mavlink_source(o.source)) return process::bridge_autopilot(node, o, mavlink);
   if (const std::optional<std::string> log_path = process::carmen_log_path(o)) {
     return replay_odometry(node, o, *log_path);
   }
@@ -190,17 +194,24 @@ int main(int argc, char** argv) {
       "imu_bridge: publishes the `imu` topic (source sim: the flight simulator; source "
       "carmen:FILE: the odometry heading of each laser scan of a CARMEN log as its orientation, "
       "and the laser's odometry pose as the `odom` topic at the same stamp; source mcap:FILE: "
-      "the `imu` channel of an MCAP recording, at its log_time spacing)"};
+      "the `imu` channel of an MCAP recording, at its log_time spacing; source "
+      "mavlink:udp:PORT or mavlink:serial:DEVICE:BAUD: a PX4/ArduPilot autopilot's attitude "
+      "and IMU, with the `pose` topic sent back to it as external vision)"};
   uavslam::process::NodeOptions node;
   uavslam::process::SimSourceOptions source;
+  source.device_prefixes = {"mavlink:"};
   uavslam::process::add_node_options(app, node);
   uavslam::process::add_sim_source_options(app, source);
+  uavslam::process::MavlinkOptions mavlink;
+  uavslam::process::add_mavlink_options(app, mavlink);
   if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("imu_bridge", [&] {
     if (const auto section = uavslam::process::apply_node_config(app, node, "imu_bridge")) {
-      uavslam::process::apply_sim_source_config(app, *section, source);
+      uavslam::process::apply_sim_source_config(app, *section, source,
+                                                uavslam::process::mavlink_config_keys());
+      uavslam::process::apply_mavlink_config(app, *section, mavlink);
     }
-    return uavslam::publish(node, source);
+    return uavslam::publish(node, source, mavlink);
   });
 }

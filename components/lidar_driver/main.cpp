@@ -5,6 +5,7 @@
 // `--rate` times faster), stamped on the log's timeline (io/CarmenTimeline.hpp).
 // Source `mcap:FILE`: the `scan` (or `VEHICLE/scan`) channel of an MCAP recording, each message as
 // it was recorded, at its log_time spacing (or `--rate` times faster; McapReplay.hpp).
+// Source `scip2:DEVICE` / `scip2tcp:HOST:PORT`: a Hokuyo over SCIP 2.0, live (Scip2Source.hpp).
 #include <chrono>
 #include <iostream>
 #include <memory>
@@ -34,6 +35,7 @@
 #include "io/CarmenScanStream.hpp"
 #include "io/ScenarioFile.hpp"
 #include "io/TumFile.hpp"
+#include "lidar_driver/Scip2Source.hpp"
 #include "sim/FlightSimulator.hpp"
 
 namespace uavslam {
@@ -142,8 +144,33 @@ int replay_recorded_scans(const process::NodeOptions& node, const process::SimSo
   return replayed ? qos.exit_code() : 1;
 }
 
+int stream_from_sensor(const process::NodeOptions& node, const process::SimSourceOptions& o,
+                       const drivers::scip2::SensorAddress& address,
+                       const lidar::Scip2SourceOptions& scip2) {
+  ScanOutput out(node, "the Hokuyo at " + address.text(), "the sensor's rate");
+  if (!process::wait_for_subscribers(out.writer, o.wait_for_subscribers, "lidar_driver")) return 1;
+  process::QosWatch qos("lidar_driver");
+  lidar::stream_scip2_scans(address, node.vehicle, scip2, [&](const msg::LaserScan& scan) {
+    qos.output(out.writer);
+    return out.writer.write(scan);
+  });
+  process::give_readers_the_last_samples();
+  return qos.exit_code();
+}
+
 int publish(const process::NodeOptions& node, const process::SimSourceOptions& o,
-            const std::string& groundtruth_path) {
+            const std::string& groundtruth_path, const lidar::Scip2SourceOptions& scip2) {
+  std::string problem;
+  const auto sensor = drivers::scip2::parse_sensor_address(o.source, problem);
+  if (!problem.empty()) {
+    std::cerr << "lidar_driver: --source: " << problem << "\n";
+    return 2;
+  }
+  if (sensor && !groundtruth_path.empty()) {
+    std::cerr << "lidar_driver: --groundtruth needs --source sim\n";
+    return 2;
+  }
+  if (sensor) return stream_from_sensor(node, o, *sensor, scip2);
   const std::optional<std::string> carmen = process::carmen_log_path(o);
   const std::optional<std::string> mcap = process::mcap_log_path(o);
   if (!carmen && !mcap) return publish_scans(node, o, groundtruth_path);
@@ -162,24 +189,35 @@ int main(int argc, char** argv) {
   CLI::App app{
       "lidar_driver: publishes the `scan` topic (source sim: the flight simulator; source "
       "carmen:FILE: the laser scans of a CARMEN log, replayed at the recorded pace; source "
-      "mcap:FILE: the `scan` channel of an MCAP recording, at its log_time spacing)"};
+      "mcap:FILE: the `scan` channel of an MCAP recording, at its log_time spacing; source "
+      "scip2:DEVICE or scip2tcp:HOST:PORT: a Hokuyo laser scanner over SCIP 2.0)"};
   uavslam::process::NodeOptions node;
   uavslam::process::SimSourceOptions source;
+  source.device_prefixes = {"scip2:", "scip2tcp:"};
   uavslam::process::add_node_options(app, node);
   uavslam::process::add_sim_source_options(app, source);
   std::string groundtruth;
   app.add_option("--groundtruth", groundtruth,
                  "sim: also write the simulator's true pose at each published scan to this TUM "
                  "file");
+  uavslam::lidar::Scip2SourceOptions scip2;
+  app.add_option("--status-period", scip2.status_period_s,
+                 "scip2, scip2tcp: seconds between status lines on stderr")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   if (const auto code = uavslam::process::parse_command_line(app, argc, argv)) return *code;
   uavslam::process::install_stop_handler();
   return uavslam::process::run_node("lidar_driver", [&] {
     if (const auto section = uavslam::process::apply_node_config(app, node, "lidar_driver")) {
-      uavslam::process::apply_sim_source_config(app, *section, source, {"groundtruth"});
+      uavslam::process::apply_sim_source_config(app, *section, source,
+                                                {"groundtruth", "status_period"});
       if (uavslam::process::unset(app, "--groundtruth")) {
         groundtruth = section->get_string_or("groundtruth", groundtruth);
       }
+      if (uavslam::process::unset(app, "--status-period")) {
+        scip2.status_period_s = section->get_double_or("status_period", scip2.status_period_s);
+      }
     }
-    return uavslam::publish(node, source, groundtruth);
+    return uavslam::publish(node, source, groundtruth, scip2);
   });
 }

@@ -1,0 +1,87 @@
+// The companion computer's side of a MAVLink link to an autopilot, independent of the transport
+// (bytes in, bytes out, host time given): it reads the autopilot's attitude and IMU messages into
+// our ImuSample (ENU/FLU, host-time stamps through AutopilotClock), announces itself with a
+// HEARTBEAT (MAV_TYPE_ONBOARD_CONTROLLER) once a second, measures the clock offset with TIMESYNC
+// requests once a second and answers the autopilot's own TIMESYNC requests with host time, and
+// encodes our poses as VISION_POSITION_ESTIMATE or ODOMETRY. Not thread-safe: one owner.
+//
+// One `imu` sample per ATTITUDE_QUATERNION (or per ATTITUDE while no ATTITUDE_QUATERNION has
+// arrived), with the attitude's rates and the newest HIGHRES_IMU's accelerations (zero before
+// one arrived). Stamped by the attitude's time_boot_ms mapped to host time; before the clock is
+// synchronised, by the arrival time.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "core/Types.hpp"
+#include "drivers/mavlink/AutopilotClock.hpp"
+#include "drivers/mavlink/FrameReader.hpp"
+#include "drivers/mavlink/FrameWriter.hpp"
+#include "drivers/mavlink/Messages.hpp"
+#include "drivers/mavlink/PoseEncoder.hpp"
+
+namespace uavslam::mavlink {
+
+enum class PoseMessage { kVisionPositionEstimate, kOdometry };
+
+struct SessionOptions {
+  std::uint8_t component_id = kMavCompIdVisualInertialOdometry;
+  PoseMessage pose_message = PoseMessage::kVisionPositionEstimate;
+  double heartbeat_period = 1.0;  // s
+  double timesync_period = 1.0;   // s
+};
+
+struct SessionCounts {
+  std::uint64_t heartbeats = 0;        // from the autopilot
+  std::uint64_t imu_samples = 0;       // handed on
+  std::uint64_t timesync_answers = 0;  // to our requests
+  std::uint64_t poses_sent = 0;
+};
+
+class AutopilotSession {
+ public:
+  using Send = std::function<void(const std::vector<std::uint8_t>&)>;
+  using OnImu = std::function<void(const ImuSample&)>;
+
+  explicit AutopilotSession(const SessionOptions& options = {});
+
+  // Bytes from the autopilot, received at host_now (s): on_imu for each sample they complete,
+  // send for the answers they need.
+  void receive(const std::uint8_t* data, std::size_t size, double host_now, const OnImu& on_imu,
+               const Send& send);
+  // The periodic HEARTBEAT and TIMESYNC request, when due.
+  void tick(double host_now, const Send& send);
+  // One pose to the autopilot, with the reset counter's rule (PoseEncoder.hpp).
+  void send_pose(const PoseEstimate& estimate, const Send& send);
+
+  bool autopilot_heard() const { return autopilot_system_.has_value(); }
+  const FrameCounts& frame_counts() const { return reader_.counts(); }
+  const SessionCounts& counts() const { return counts_; }
+  const AutopilotClock& clock() const { return clock_; }
+
+ private:
+  void handle(const Frame& frame, double host_now, const OnImu& on_imu, const Send& send);
+  void handle_timesync(const Frame& frame, double host_now, const Send& send);
+  void publish_attitude(std::uint32_t time_boot_ms, const Eigen::Quaterniond& ned_frd,
+                        const Eigen::Vector3d& rates_frd, double host_now, const OnImu& on_imu);
+
+  SessionOptions options_;
+  FrameReader reader_;
+  FrameWriter writer_;
+  AutopilotClock clock_;
+  ResetCounter reset_counter_;
+  SessionCounts counts_;
+  std::optional<std::uint8_t> autopilot_system_;
+  std::uint8_t autopilot_component_ = 1;
+  bool quaternions_seen_ = false;
+  Eigen::Vector3d acceleration_frd_ = Eigen::Vector3d::Zero();
+  std::deque<std::int64_t> pending_requests_;  // ts1 of our TIMESYNC requests, ns
+  double next_heartbeat_ = 0;
+  double next_timesync_ = 0;
+};
+
+}  // namespace uavslam::mavlink
