@@ -4,18 +4,16 @@
 #include <netdb.h>
 #include <poll.h>
 #include <sys/socket.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+#include <system_error>
+
+#include "drivers/serial/SerialPort.hpp"
 
 namespace uavslam::drivers::scip2 {
 namespace {
-
-std::string system_error(const std::string& what) {
-  return what + ": " + std::strerror(errno);
-}
 
 bool wait_writable(int fd, int timeout_ms) {
   pollfd p{fd, POLLOUT, 0};
@@ -56,31 +54,14 @@ bool ByteLink::write(std::string_view bytes) {
   return true;
 }
 
+// SCIP 2.0 over USB ignores the line rate; 115200 suits the RS-232 models' default.
 std::unique_ptr<ByteLink> open_serial(const std::string& path, std::string& error) {
-  const int fd = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) {
-    error = system_error("cannot open " + path);
+  try {
+    return std::make_unique<ByteLink>(open_raw_serial(path, 115200));
+  } catch (const std::system_error& e) {
+    error = e.what();
     return nullptr;
   }
-  termios tty{};
-  if (::tcgetattr(fd, &tty) != 0) {
-    error = system_error(path + " is not a tty");
-    ::close(fd);
-    return nullptr;
-  }
-  ::cfmakeraw(&tty);  // no echo, no line editing, no CR/LF translation: SCIP bytes as they are
-  tty.c_cflag |= CLOCAL | CREAD;
-  ::cfsetispeed(&tty, B115200);
-  ::cfsetospeed(&tty, B115200);
-  tty.c_cc[VMIN] = 0;
-  tty.c_cc[VTIME] = 0;
-  if (::tcsetattr(fd, TCSANOW, &tty) != 0) {
-    error = system_error("cannot set raw mode on " + path);
-    ::close(fd);
-    return nullptr;
-  }
-  ::tcflush(fd, TCIOFLUSH);
-  return std::make_unique<ByteLink>(fd);
 }
 
 std::unique_ptr<ByteLink> open_tcp(const std::string& host, int port, int timeout_ms,
