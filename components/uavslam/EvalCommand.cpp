@@ -9,6 +9,7 @@
 #include "eval/RelationMetric.hpp"
 #include "io/RelationsFile.hpp"
 #include "io/TumFile.hpp"
+#include "io/YamlReader.hpp"
 
 namespace uavslam::cli {
 namespace {
@@ -21,6 +22,7 @@ struct EvalOptions {
   double max_dt = 0.01;
   double delta = 1.0;
   bool json = false;
+  bool consistency = false;
 };
 
 constexpr double kDegreesPerRadian = 57.29577951308232;  // 180 / pi
@@ -64,7 +66,39 @@ int run_relations_eval(const EvalOptions& o) {
   return 0;
 }
 
+// The relations' triangles (eval/RelationMetric.hpp): how far the reference itself is from one
+// trajectory.
+int run_consistency(const EvalOptions& o) {
+  const eval::RelationClosures c =
+      eval::relation_triangle_closures(io::read_relations(o.relations));
+  if (o.json) {
+    const nlohmann::json j = {
+        {"triangles", c.triangles},
+        {"closure_translation_m", statistics_json(c.translation, 1.0)},
+        {"closure_rotation_deg", statistics_json(c.rotation, kDegreesPerRadian)},
+        {"triangles_with_a_short_leg", c.triangles_with_short_leg},
+        {"short_span_limit_s", c.short_span_limit},
+        {"short_leg_closure_translation_m", statistics_json(c.short_leg_translation, 1.0)}};
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << std::fixed << std::setprecision(4) << "uavslam eval: the relations " << o.relations
+            << " against themselves\n  triangles         " << c.triangles << " close to within "
+            << c.translation.mean << " ± " << c.translation.std_dev << " m (max "
+            << c.translation.max << "), " << std::setprecision(3)
+            << c.rotation.mean * kDegreesPerRadian << " ± "
+            << c.rotation.std_dev * kDegreesPerRadian << " deg\n  with a leg under 5 s "
+            << c.triangles_with_short_leg << ": " << std::setprecision(4)
+            << c.short_leg_translation.mean << " ± " << c.short_leg_translation.std_dev << " m\n";
+  return 0;
+}
+
 int run_eval(const EvalOptions& o) {
+  if (o.consistency) {
+    if (o.relations.empty()) throw io::ConfigError("--consistency needs --relations");
+    return run_consistency(o);
+  }
+  if (o.estimate.empty()) throw io::ConfigError("--estimate is required");
   if (!o.relations.empty()) return run_relations_eval(o);
   eval::MetricOptions options;
   options.alignment = o.align == "se3" ? eval::Alignment::SE3 : eval::Alignment::None;
@@ -93,7 +127,6 @@ void add_eval_command(CLI::App& app, int& exit_code) {
       "metric (Kuemmerle et al. 2009) of a planar estimate against relations");
   cmd->add_option("--estimate", options->estimate,
                   "estimated trajectory (TUM; with --relations 'timestamp x y theta' lines)")
-      ->required()
       ->check(CLI::ExistingFile);
   // Exactly one reference: a ground-truth trajectory or the benchmark's relations.
   CLI::Option_group* reference =
@@ -119,6 +152,10 @@ void add_eval_command(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "print JSON instead of text");
+  cmd->add_flag("--consistency", options->consistency,
+                "with --relations and no --estimate: how well the relations agree with each "
+                "other (their triangles' closure: no estimate agrees with all three relations "
+                "of a triangle that does not close)");
   cmd->callback([options, &exit_code] { exit_code = run_eval(*options); });
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <utility>
 
@@ -24,6 +25,17 @@ PlanarMotion motion_between(const PlanarMotion& a, const PlanarMotion& b) {
   const double c = std::cos(a.theta);
   const double s = std::sin(a.theta);
   return {c * dx + s * dy, -s * dx + c * dy, normalised_angle(b.theta - a.theta)};
+}
+
+// a ⊕ b: motion b applied after motion a.
+PlanarMotion compose(const PlanarMotion& a, const PlanarMotion& b) {
+  const double c = std::cos(a.theta);
+  const double s = std::sin(a.theta);
+  return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, normalised_angle(a.theta + b.theta)};
+}
+
+PlanarMotion inverse(const PlanarMotion& a) {
+  return motion_between(a, {});
 }
 
 // Estimated poses sorted by stamp, so that a stamp is found by value whatever the file order.
@@ -81,6 +93,20 @@ struct SubsetAccumulator {
   }
 };
 
+// The relations as a graph: scan (its stamp in units of the tolerance) -> scan -> the motion.
+using RelationGraph = std::map<long long, std::map<long long, PlanarMotion>>;
+
+RelationGraph graph_of(const std::vector<Relation>& relations, double stamp_tolerance) {
+  const auto key = [&](double t) { return std::llround(t / stamp_tolerance); };
+  RelationGraph graph;
+  for (const Relation& r : relations) {
+    const PlanarMotion motion{r.x, r.y, r.yaw};
+    graph[key(r.t1)][key(r.t2)] = motion;
+    graph[key(r.t2)][key(r.t1)] = inverse(motion);
+  }
+  return graph;
+}
+
 }  // namespace
 
 RelationErrors compare_to_relations(const std::vector<PlanarStamped>& estimate,
@@ -116,6 +142,34 @@ RelationErrors compare_to_relations(const std::vector<PlanarStamped>& estimate,
   errors.all = all.result();
   errors.short_span = short_span.result();
   return errors;
+}
+
+RelationClosures relation_triangle_closures(const std::vector<Relation>& relations,
+                                            double stamp_tolerance) {
+  const RelationGraph graph = graph_of(relations, stamp_tolerance);
+  RelationClosures closures;
+  const double short_keys = closures.short_span_limit / stamp_tolerance;
+  std::vector<double> translation, rotation, short_leg;
+  for (const auto& [a, from_a] : graph) {
+    for (const auto& [b, ab] : from_a) {
+      if (b <= a) continue;
+      for (const auto& [c, bc] : graph.at(b)) {
+        if (c <= b) continue;
+        const auto ac = from_a.find(c);
+        if (ac == from_a.end()) continue;
+        const PlanarMotion closure = motion_between(ac->second, compose(ab, bc));
+        translation.push_back(std::hypot(closure.x, closure.y));
+        rotation.push_back(std::abs(closure.theta));
+        if (std::min({b - a, c - b}) < short_keys) short_leg.push_back(translation.back());
+      }
+    }
+  }
+  closures.triangles = translation.size();
+  closures.translation = statistics_of(translation);
+  closures.rotation = statistics_of(rotation);
+  closures.triangles_with_short_leg = short_leg.size();
+  closures.short_leg_translation = statistics_of(short_leg);
+  return closures;
 }
 
 }  // namespace uavslam::eval

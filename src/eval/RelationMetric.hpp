@@ -41,4 +41,22 @@ RelationErrors compare_to_relations(const std::vector<PlanarStamped>& estimate,
                                     const std::vector<Relation>& relations,
                                     double stamp_tolerance = 1e-6);
 
+// The relations' own consistency. Three relations joining the same three scans (a->b, b->c and
+// a->c, each given in either direction) close to the identity when they are exact: the closure
+// c = δ_ac⁻¹ ⊕ δ_ab ⊕ δ_bc measures how far the reference itself is from any one trajectory: no
+// estimate can agree with all three relations of a triangle that does not close.
+struct RelationClosures {
+  std::size_t triangles = 0;
+  ErrorStatistics translation;  // |trans(c)|, m
+  ErrorStatistics rotation;     // |rot(c)|, rad
+  // Those with a leg under short_span_limit (the subset that scores local accuracy).
+  std::size_t triangles_with_short_leg = 0;
+  ErrorStatistics short_leg_translation;
+  double short_span_limit = 5.0;
+};
+
+// Scans are identified by their stamps (equal within `stamp_tolerance`).
+RelationClosures relation_triangle_closures(const std::vector<Relation>& relations,
+                                            double stamp_tolerance = 1e-6);
+
 }  // namespace uavslam::eval

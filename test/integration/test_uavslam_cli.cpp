@@ -220,6 +220,24 @@ TEST_F(UavslamCli, EvalScoresAPlanarEstimateAgainstRelations) {
   EXPECT_NE(both.exit_code, 0) << both.output;
   const CommandResult neither = run("eval --estimate " + estimate);
   EXPECT_NE(neither.exit_code, 0) << neither.output;
+  const CommandResult no_estimate = run("eval --relations " + relations);
+  EXPECT_EQ(no_estimate.exit_code, 2) << no_estimate.output;
+  EXPECT_THAT(no_estimate.output, HasSubstr("--estimate is required"));
+}
+
+// The relations against themselves: a triangle of scans 0.1 m from closing.
+TEST_F(UavslamCli, EvalConsistencyMeasuresTheRelationsTriangles) {
+  const std::string relations = write("t.relations",
+                                      "1.0 2.0 1 0 0 0 0 0\n2.0 3.0 1 0 0 0 0 0\n"
+                                      "1.0 3.0 2.1 0 0 0 0 0\n");
+  const CommandResult r = run("eval --consistency --relations " + relations);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("triangles         1 close to within 0.1000"));
+  const CommandResult j = run("eval --consistency --json --relations " + relations);
+  ASSERT_EQ(j.exit_code, 0) << j.output;
+  EXPECT_EQ(nlohmann::json::parse(j.output)["triangles"].get<int>(), 1);
+  const CommandResult alone = run("eval --consistency --groundtruth " + relations);
+  EXPECT_EQ(alone.exit_code, 2) << alone.output;
 }
 
 namespace {

@@ -184,6 +184,27 @@ TEST_F(RelationFiles, AMissingFileIsNamed) {
               ::testing::ThrowsMessage<uavslam::io::FileError>(HasSubstr(missing)));
 }
 
+// Relations taken from one trajectory close every triangle; one relation moved by 0.1 m opens the
+// triangles it is in by that much, whichever direction each relation is given in.
+TEST(RelationClosures, ExactRelationsCloseAndAMovedOneOpensItsTriangles) {
+  const std::vector<PlanarStamped> poses = truth();
+  std::vector<Relation> relations{relation_between(poses[0], poses[1]),
+                                  relation_between(poses[2], poses[1]),  // given backwards
+                                  relation_between(poses[0], poses[2]),
+                                  relation_between(poses[2], poses[3]),
+                                  relation_between(poses[3], poses[4])};
+  const auto exact = uavslam::eval::relation_triangle_closures(relations);
+  EXPECT_EQ(exact.triangles, 1u);  // scans 0, 1, 2
+  EXPECT_NEAR(exact.translation.max, 0.0, 1e-12);
+  EXPECT_NEAR(exact.rotation.max, 0.0, 1e-12);
+  EXPECT_EQ(exact.triangles_with_short_leg, 1u);
+
+  relations[2].x += 0.1;  // 0 -> 2
+  const auto moved = uavslam::eval::relation_triangle_closures(relations);
+  EXPECT_NEAR(moved.translation.mean, 0.1, 1e-9);
+  EXPECT_NEAR(moved.rotation.max, 0.0, 1e-12);
+}
+
 // The benchmark's own files, from the shared data folder next to the repository.
 void expect_relation_file(const std::string& name, std::size_t count, std::size_t short_count) {
   const std::string path = std::string(UAVSLAM_SOURCE_DIR) + "/../shared/data/freiburg/" + name;
