@@ -36,6 +36,7 @@ struct BenchOptions {
   int domain = 226;
   bool discovery_server = false;
   std::string max_scan_backlog;  // empty: the matcher's default
+  std::string slam_config;       // empty: the matcher's built-in defaults
 };
 
 double system_now() {
@@ -265,6 +266,9 @@ int main(int argc, char** argv) {
                "profiles) instead of unicast initial peers");
   app.add_option("--max-scan-backlog", o.max_scan_backlog,
                  "passed to the matcher (0: keep only the newest scan, as before the backlog)");
+  app.add_option("--slam-config", o.slam_config,
+                 "SLAM parameters YAML for the matcher (e.g. one with `recovery: {gap: 0}`)")
+      ->check(CLI::ExistingFile);
   CLI11_PARSE(app, argc, argv);
   uavslam::process::install_stop_handler();
   std::filesystem::create_directories(o.out);
