@@ -5,6 +5,7 @@
 #include <fstream>
 #include <regex>
 #include <stdexcept>
+#include <thread>
 
 #include "io/TumFile.hpp"
 
@@ -39,6 +40,16 @@ std::vector<double> read_arrivals(const std::string& file) {
   return times;
 }
 
+// Resident memory of a process in kB (/proc/PID/status VmRSS); -1 when it is gone.
+long resident_kb(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+  }
+  return -1;
+}
+
 std::string format_time(double seconds) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6f", seconds);
@@ -52,13 +63,11 @@ double FlightResult::matched_share() const {
   return static_cast<double>(poses_published) / static_cast<double>(scans_published);
 }
 
-long resident_kb(pid_t pid) {
-  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
-  std::string line;
-  while (std::getline(status, line)) {
-    if (line.rfind("VmRSS:", 0) == 0) return std::stol(line.substr(6));
+std::optional<double> FlightResult::poses_resumed_after(double t) const {
+  for (double arrival : pose_arrivals) {
+    if (arrival >= t) return arrival - t;
   }
-  return -1;
+  return std::nullopt;
 }
 
 TwoHostFlight::TwoHostFlight(const FlightSpec& spec, const EmulatedLink* link)
@@ -134,6 +143,22 @@ void TwoHostFlight::start_discovery_server() {
                            "uavslam_discovery_server@" + spec_.qos_file});
   processes_.push_back(std::make_unique<process::ChildProcess>(argv, out("discovery_server.log")));
   if (!processes_.back()->started()) throw std::runtime_error("cannot start the discovery server");
+}
+
+OutageRecord TwoHostFlight::cut_link(EmulatedLink& link, double at_s,
+                                     std::chrono::milliseconds length,
+                                     const std::function<bool()>& stop) const {
+  while (system_now() < start_at_ + at_s && !stop()) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  OutageRecord r;
+  r.lidar_before_kb = resident_kb(lidar_->pid());
+  r.imu_before_kb = resident_kb(imu_->pid());
+  link.outage(length);
+  r.ended_at = system_now();
+  r.lidar_after_kb = resident_kb(lidar_->pid());
+  r.imu_after_kb = resident_kb(imu_->pid());
+  return r;
 }
 
 FlightResult TwoHostFlight::finish(std::chrono::seconds timeout) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -49,6 +50,16 @@ struct FlightResult {
 
   // The share of published scans that got a pose.
   double matched_share() const;
+  // Seconds from `t` (system clock) to the first pose at the ground station after it.
+  std::optional<double> poses_resumed_after(double t) const;
+};
+
+// What an outage of the link in the middle of a flight did on the UAV: the sensors' resident
+// memory (kB) before and after it, and when the link came back (system clock).
+struct OutageRecord {
+  double ended_at = 0.0;
+  long lidar_before_kb = 0, lidar_after_kb = 0;
+  long imu_before_kb = 0, imu_after_kb = 0;
 };
 
 class TwoHostFlight {
@@ -64,6 +75,12 @@ class TwoHostFlight {
   void start(double lead_s = 3.0);
   double start_at() const { return start_at_; }
 
+  // Waits until `at_s` seconds into the flight (or until `stop` says so), then cuts `link` for
+  // `length`, reading the sensors' memory on both sides of the outage.
+  OutageRecord cut_link(
+      EmulatedLink& link, double at_s, std::chrono::milliseconds length,
+      const std::function<bool()>& stop = [] { return false; }) const;
+
   // Waits for the LiDAR driver to publish the flight's last scan and end.
   bool wait_for_sensors(std::chrono::seconds timeout) { return lidar_->wait(timeout); }
 
@@ -75,10 +92,6 @@ class TwoHostFlight {
   // host, the loopback one) and the flight's domain; owned and stopped by this flight.
   process::ChildProcess& launch(Host host, const std::string& name, std::vector<std::string> flags);
   std::string out(const std::string& name) const;
-
-  const process::ChildProcess& lidar() const { return *lidar_; }
-  const process::ChildProcess& imu() const { return *imu_; }
-  const process::ChildProcess& matcher() const { return *matcher_; }
 
  private:
   std::vector<std::string> sensor_flags(int subscribers) const;
@@ -94,8 +107,5 @@ class TwoHostFlight {
   process::ChildProcess* imu_ = nullptr;
   process::ChildProcess* lidar_ = nullptr;
 };
-
-// Resident memory of a process in kB (/proc/PID/status VmRSS); -1 when it is gone.
-long resident_kb(pid_t pid);
 
 }  // namespace uavslam::net

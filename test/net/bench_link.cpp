@@ -11,7 +11,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -38,10 +37,6 @@ struct BenchOptions {
   std::string max_scan_backlog;  // empty: the matcher's default
   std::string slam_config;       // empty: the matcher's built-in defaults
 };
-
-double system_now() {
-  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
 
 // The link's bytes per topic from one side's traffic file, per second of flight.
 nlohmann::json topic_rates(const std::string& file, double flight_s) {
@@ -97,7 +92,14 @@ class LinkBenchmark {
     {
       TwoHostFlight flight(spec, link.get());
       flight.start();
-      if (outage && link) outage_end = fly_through_outage(flight, *link, run);
+      if (outage && link) {
+        const OutageRecord cut = flight.cut_link(
+            *link, o_.outage_at_s, std::chrono::milliseconds(static_cast<long>(o_.outage_s * 1000)),
+            [] { return process::stop_requested(); });
+        outage_end = cut.ended_at;
+        run.uav_rss_growth_kb =
+            cut.lidar_after_kb + cut.imu_after_kb - cut.lidar_before_kb - cut.imu_before_kb;
+      }
       // Ctrl-C ends the flight early; the processes still stop cleanly and write their outputs.
       const auto deadline =
           std::chrono::steady_clock::now() + std::chrono::duration<double>(o_.duration_s + 60);
@@ -106,14 +108,7 @@ class LinkBenchmark {
       }
       run.result = flight.finish(std::chrono::seconds(0));
     }
-    if (outage_end > 0.0) {
-      for (double t : run.result.pose_arrivals) {
-        if (t >= outage_end) {
-          run.recovery_s = t - outage_end;
-          break;
-        }
-      }
-    }
+    if (outage_end > 0.0) run.recovery_s = run.result.poses_resumed_after(outage_end);
     if (link) {
       link->stop_emulators();
       run.uav_to_gcs = topic_rates(link->traffic_file(Host::kUav), o_.duration_s);
@@ -124,21 +119,6 @@ class LinkBenchmark {
   }
 
  private:
-  // Waits for the outage's moment on the flight's timeline, cuts the link, and measures the
-  // sensors' memory across it. Returns when the link came back (system clock).
-  double fly_through_outage(TwoHostFlight& flight, EmulatedLink& link, Run& run) {
-    const double at = flight.start_at() + o_.outage_at_s;
-    while (system_now() < at && !process::stop_requested()) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    const pid_t lidar = flight.lidar().pid(), imu = flight.imu().pid();
-    const long before = resident_kb(lidar) + resident_kb(imu);
-    link.outage(std::chrono::milliseconds(static_cast<long>(o_.outage_s * 1000)));
-    const double end = system_now();
-    run.uav_rss_growth_kb = resident_kb(lidar) + resident_kb(imu) - before;
-    return end;
-  }
-
   BenchOptions o_;
   int domain_offset_ = 0;
 };
