@@ -3,10 +3,13 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <map>
 
 #include "Commands.hpp"
 #include "RunSummary.hpp"
 #include "eval/RelationMetric.hpp"
+#include "eval/ScanPairAlignment.hpp"
+#include "io/CarmenLog.hpp"
 #include "io/RelationsFile.hpp"
 #include "io/TumFile.hpp"
 #include "io/YamlReader.hpp"
@@ -23,6 +26,9 @@ struct EvalOptions {
   double delta = 1.0;
   bool json = false;
   bool consistency = false;
+  std::string scans;  // a CARMEN log: align each relation's two scans (ScanPairAlignment)
+  std::string config;
+  std::vector<std::string> overrides;
 };
 
 constexpr double kDegreesPerRadian = 57.29577951308232;  // 180 / pi
@@ -93,7 +99,80 @@ int run_consistency(const EvalOptions& o) {
   return 0;
 }
 
+// The scans of a CARMEN log by stamp (the relations name scans by their ipc_timestamps), each with
+// its own geometry (beam angles and the laser's mount).
+class ScansByStamp {
+ public:
+  explicit ScansByStamp(const std::string& path) {
+    const io::CarmenLog log = io::read_carmen_log(path);
+    for (const std::string& problem : log.problems) std::cerr << problem << "\n";
+    for (const io::CarmenMessage& message : log.messages) {
+      if (const auto* scan = std::get_if<io::CarmenScan>(&message)) {
+        scans_.emplace(key(scan->ipc_timestamp), *scan);
+      }
+    }
+  }
+
+  std::optional<Scan> at(double stamp) const {
+    const auto found = scans_.find(key(stamp));
+    if (found == scans_.end()) return std::nullopt;
+    const io::CarmenScan& scan = found->second;
+    return io::to_core_scan(scan, std::make_shared<const ScanGeometry>(io::to_scan_geometry(scan)),
+                            0);
+  }
+
+ private:
+  static long long key(double stamp) { return std::llround(stamp * 1e6); }  // the logs' 1 us
+  std::map<long long, io::CarmenScan> scans_;
+};
+
+// Each relation's two scans aligned to each other from the relation (eval/ScanPairAlignment):
+// how far the scans themselves put the relations.
+int run_scan_pair_eval(const EvalOptions& o) {
+  const SlamConfig config = load_config(o.config, o.overrides);
+  const std::vector<eval::Relation> relations = io::read_relations(o.relations);
+  const ScansByStamp scans(o.scans);
+  std::vector<std::optional<eval::Relation>> aligned;
+  std::size_t missing_scans = 0;
+  for (const eval::Relation& relation : relations) {
+    const std::optional<Scan> first = scans.at(relation.t1);
+    const std::optional<Scan> second = scans.at(relation.t2);
+    aligned.emplace_back();
+    if (!first || !second) {
+      ++missing_scans;
+      continue;
+    }
+    const eval::ScanPairAlignment a = eval::align_scan_pair(*first, *second, relation, config);
+    if (a.outcome == ScanOutcome::Accepted) aligned.back() = a.motion;
+  }
+  const eval::RelationErrors errors = eval::compare_relation_estimates(relations, aligned);
+  if (o.json) {
+    const nlohmann::json j = {{"all", subset_json(errors.all)},
+                              {"short_span_limit_s", errors.short_span_limit},
+                              {"short_span", subset_json(errors.short_span)},
+                              {"relations_without_their_scans", missing_scans}};
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << "uavslam eval: each relation's two scans of " << o.scans
+            << " aligned to each other by the ICP, starting at the relation " << o.relations
+            << "\n";
+  print_subset(std::cout, "all relations     ", errors.all);
+  print_subset(std::cout, "under 5 s         ", errors.short_span);
+  std::cout << "  unmatched: " << missing_scans
+            << " relations name a scan the log does not have; the rest the ICP rejected (scans "
+               "that do not overlap)\n";
+  return 0;
+}
+
 int run_eval(const EvalOptions& o) {
+  if (!o.scans.empty()) {
+    if (o.relations.empty()) throw io::ConfigError("--scans needs --relations");
+    if (!o.estimate.empty() || o.consistency) {
+      throw io::ConfigError("--scans scores the log's own scans: no --estimate or --consistency");
+    }
+    return run_scan_pair_eval(o);
+  }
   if (o.consistency) {
     if (o.relations.empty()) throw io::ConfigError("--consistency needs --relations");
     return run_consistency(o);
@@ -156,6 +235,19 @@ void add_eval_command(CLI::App& app, int& exit_code) {
                 "with --relations and no --estimate: how well the relations agree with each "
                 "other (their triangles' closure: no estimate agrees with all three relations "
                 "of a triangle that does not close)");
+  cmd->add_option("--scans", options->scans,
+                  "with --relations and no --estimate: a CARMEN log whose scans the relations "
+                  "name; each relation's two scans are aligned to each other by the ICP, starting "
+                  "at the relation, and scored against it (how far the scans themselves put the "
+                  "relations: a floor for any estimate made from them)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--config", options->config,
+                  "with --scans: SLAM parameters YAML for the ICP (e.g. "
+                  "config/slam_2d_logs.yaml; default: the built-in defaults)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--set", options->overrides,
+                  "with --scans: override one SLAM parameter, e.g. --set icp.metric=point_to_point "
+                  "(repeatable)");
   cmd->callback([options, &exit_code] { exit_code = run_eval(*options); });
 }
 

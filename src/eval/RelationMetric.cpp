@@ -113,23 +113,39 @@ RelationErrors compare_to_relations(const std::vector<PlanarStamped>& estimate,
                                     const std::vector<Relation>& relations,
                                     double stamp_tolerance) {
   const PoseLookup lookup(estimate, stamp_tolerance);
-  RelationErrors errors;
-  SubsetAccumulator all;
-  SubsetAccumulator short_span;
+  std::vector<std::optional<Relation>> estimated;
+  estimated.reserve(relations.size());
   for (const Relation& relation : relations) {
-    const bool is_short = std::abs(relation.t2 - relation.t1) < errors.short_span_limit;
-    ++all.relations;
-    if (is_short) ++short_span.relations;
     const std::optional<PlanarMotion> from = lookup.at(relation.t1);
     const std::optional<PlanarMotion> to = lookup.at(relation.t2);
     if (!from || !to) {
+      estimated.emplace_back();
+      continue;
+    }
+    const PlanarMotion motion = motion_between(*from, *to);  // δ̂ = x̂(t1)⁻¹ ⊕ x̂(t2)
+    estimated.push_back(Relation{relation.t1, relation.t2, motion.x, motion.y, motion.theta});
+  }
+  return compare_relation_estimates(relations, estimated);
+}
+
+RelationErrors compare_relation_estimates(const std::vector<Relation>& relations,
+                                          const std::vector<std::optional<Relation>>& estimated) {
+  RelationErrors errors;
+  SubsetAccumulator all;
+  SubsetAccumulator short_span;
+  for (std::size_t i = 0; i < relations.size(); ++i) {
+    const Relation& relation = relations[i];
+    const bool is_short = std::abs(relation.t2 - relation.t1) < errors.short_span_limit;
+    ++all.relations;
+    if (is_short) ++short_span.relations;
+    if (i >= estimated.size() || !estimated[i]) {
       ++all.unmatched;
       if (is_short) ++short_span.unmatched;
       continue;
     }
-    const PlanarMotion estimated = motion_between(*from, *to);
+    const Relation& e = *estimated[i];
     const PlanarMotion error =
-        motion_between({relation.x, relation.y, relation.yaw}, estimated);  // δ⁻¹ ⊕ δ̂
+        motion_between({relation.x, relation.y, relation.yaw}, {e.x, e.y, e.yaw});  // δ⁻¹ ⊕ δ̂
     const double translation = std::hypot(error.x, error.y);
     const double rotation = std::abs(error.theta);
     all.translation.push_back(translation);

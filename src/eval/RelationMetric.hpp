@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "eval/Relation.hpp"
@@ -40,6 +41,11 @@ struct RelationErrors {
 RelationErrors compare_to_relations(const std::vector<PlanarStamped>& estimate,
                                     const std::vector<Relation>& relations,
                                     double stamp_tolerance = 1e-6);
+
+// The same metric for motions estimated relation by relation (e.g. eval/ScanPairAlignment):
+// estimated[i] is the estimate of relations[i], or nullopt (counted as unmatched).
+RelationErrors compare_relation_estimates(const std::vector<Relation>& relations,
+                                          const std::vector<std::optional<Relation>>& estimated);
 
 // The relations' own consistency. Three relations joining the same three scans (a->b, b->c and
 // a->c, each given in either direction) close to the identity when they are exact: the closure

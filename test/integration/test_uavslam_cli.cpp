@@ -298,6 +298,42 @@ TEST_F(UavslamCli, RunTracksACarmenLogInFileOrder) {
   EXPECT_FALSE(uavslam::io::read_ply((out / "map.ply").string()).empty());
 }
 
+// The scans' own alignment of each relation: an exact relation scores 0, one 0.1 m off scores
+// 0.1 m (the scans show the true motion), one naming a scan the log lacks is unmatched.
+TEST_F(UavslamCli, EvalScansScoresTheRelationsAgainstTheScansOwnAlignment) {
+  std::string log;
+  for (int i = 0; i < 3; ++i) {
+    log += square_room_flaser(-1.0 + 0.2 * i, 0.5, 0.02 * i, 100.0 + 0.1 * i);
+  }
+  const std::string path = write("room.clf", log);
+  const double c = std::cos(0.02);
+  const double s = std::sin(0.02);
+  std::ostringstream relations;
+  relations << std::fixed << std::setprecision(6) << "100.0 100.1 0.2 0 0 0 0 0.02\n"
+            << "100.1 100.2 " << 0.2 * c + 0.1 << ' ' << -0.2 * s << " 0 0 0 0.02\n"
+            << "100.0 107.0 1 0 0 0 0 0\n";
+  const std::string relations_path = write("room.relations", relations.str());
+  const std::string config = " --config " + source("config/slam_2d_logs.yaml");
+  const CommandResult r =
+      run("eval --json --relations " + relations_path + " --scans " + path + config);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json figures = nlohmann::json::parse(r.output);
+  EXPECT_EQ(figures["relations_without_their_scans"].get<int>(), 1);
+  EXPECT_EQ(figures["all"]["unmatched"].get<int>(), 1);
+  EXPECT_NEAR(figures["all"]["translation_m"]["max"].get<double>(), 0.1, 2e-3);
+  EXPECT_NEAR(figures["all"]["translation_m"]["mean"].get<double>(), 0.05, 2e-3);
+
+  const CommandResult text =
+      run("eval --relations " + relations_path + " --scans " + path + config);
+  EXPECT_EQ(text.exit_code, 0) << text.output;
+  EXPECT_THAT(text.output, HasSubstr("over 2 of 3 relations, 1 unmatched"));
+  const CommandResult with_estimate =
+      run("eval --relations " + relations_path + " --scans " + path + " --estimate " + path);
+  EXPECT_EQ(with_estimate.exit_code, 2) << with_estimate.output;
+  const CommandResult alone = run("eval --groundtruth " + relations_path + " --scans " + path);
+  EXPECT_EQ(alone.exit_code, 2) << alone.output;
+}
+
 // The smaller Freiburg log end to end with the shipped config: the run completes, most scans are
 // matched, every relation finds its poses, and estimating yaw in every scan beats the odometry it
 // starts from by far (odometry alone: 6.5 m / 0.059 m / 2.4 deg). The bounds leave room for the

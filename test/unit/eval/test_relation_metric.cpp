@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -140,6 +141,23 @@ TEST(RelationMetric, RelationsWithoutAnEstimateAreCountedAsUnmatched) {
   EXPECT_NEAR(e.all.translation.max, 0.0, 1e-12);
   EXPECT_EQ(e.short_span.relations, 3u);
   EXPECT_EQ(e.short_span.unmatched, 2u);
+}
+
+// Motions estimated relation by relation (the scans' own alignment) score as an estimate would:
+// the error is the estimated motion against the true one, and a missing one is unmatched.
+TEST(RelationMetric, MotionsEstimatedRelationByRelationScoreTheSameWay) {
+  const std::vector<Relation> relations = relations_of(truth());
+  std::vector<std::optional<Relation>> estimated(relations.begin(), relations.end());
+  estimated[1]->x += 0.3;  // 1.5 s apart: a short one
+  estimated[2].reset();    // 17.5 s apart
+  const RelationErrors e = uavslam::eval::compare_relation_estimates(relations, estimated);
+  EXPECT_EQ(e.all.relations, 5u);
+  EXPECT_EQ(e.all.unmatched, 1u);
+  EXPECT_NEAR(e.all.translation.max, 0.3, 1e-12);
+  EXPECT_NEAR(e.all.translation.mean, 0.3 / 4, 1e-12);
+  EXPECT_NEAR(e.all.rotation.max, 0.0, 1e-12);
+  EXPECT_EQ(e.short_span.translation.count, 3u);
+  EXPECT_NEAR(e.short_span.translation.mean, 0.1, 1e-12);
 }
 
 using RelationFiles = uavslam::test::TempDirTest;
