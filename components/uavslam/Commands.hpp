@@ -20,6 +20,9 @@ void add_run_command(CLI::App& app, int& exit_code);
 void add_offline_command(CLI::App& app, int& exit_code);
 
 // --config FILE (optional; the seed's defaults otherwise) and then each --set key=value.
+// config_help says what the file is for in this subcommand.
+void add_slam_config_options(CLI::App& cmd, std::string& config,
+                             std::vector<std::string>& overrides, const std::string& config_help);
 SlamConfig load_config(const std::string& path, const std::vector<std::string>& overrides);
 
 }  // namespace uavslam::cli

@@ -241,13 +241,9 @@ void add_eval_command(CLI::App& app, int& exit_code) {
                   "at the relation, and scored against it (how far the scans themselves put the "
                   "relations: a floor for any estimate made from them)")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--config", options->config,
-                  "with --scans: SLAM parameters YAML for the ICP (e.g. "
-                  "config/slam_2d_logs.yaml; default: the built-in defaults)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--set", options->overrides,
-                  "with --scans: override one SLAM parameter, e.g. --set icp.metric=point_to_point "
-                  "(repeatable)");
+  add_slam_config_options(*cmd, options->config, options->overrides,
+                          "with --scans: SLAM parameters YAML for the ICP (e.g. "
+                          "config/slam_2d_logs.yaml; default: the built-in defaults)");
   cmd->callback([options, &exit_code] { exit_code = run_eval(*options); });
 }
 

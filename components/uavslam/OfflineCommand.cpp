@@ -312,13 +312,10 @@ void add_offline_command(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile)
       ->needs(log);
   cmd->add_option("--out", options->out, "output folder (created)")->required();
-  cmd->add_option("--config", options->config,
-                  "SLAM parameters YAML of the real-time pass; the offline pass uses it with "
-                  "every point and the exact index (default: config/slam.yaml's defaults; "
-                  "config/slam_2d_logs.yaml for CARMEN logs)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--set", options->overrides,
-                  "override one SLAM parameter, e.g. --set icp.iterations=12 (repeatable)");
+  add_slam_config_options(*cmd, options->config, options->overrides,
+                          "SLAM parameters YAML of the real-time pass; the offline pass uses it "
+                          "with every point and the exact index (default: config/slam.yaml's "
+                          "defaults; config/slam_2d_logs.yaml for CARMEN logs)");
   cmd->add_option("--voxel", options->voxel,
                   "edge of the dense cloud's voxel filter in m: one point (the centroid) per "
                   "voxel; 0 keeps every point (default 0.01)")

@@ -123,12 +123,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", options->out, "output folder (created)")->required();
-  cmd->add_option("--config", options->config,
-                  "SLAM parameters YAML (e.g. config/slam_2d_logs.yaml; default: the built-in "
-                  "defaults, as in config/slam.yaml)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--set", options->overrides,
-                  "override one SLAM parameter, e.g. --set icp.iterations=12 (repeatable)");
+  add_slam_config_options(*cmd, options->config, options->overrides,
+                          "SLAM parameters YAML (e.g. config/slam_2d_logs.yaml; default: the "
+                          "built-in defaults, as in config/slam.yaml)");
   cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
   cmd->add_option("--heading-jitter", options->jitter.amplitude,
                   "robustness probe: add a pseudo-random heading offset, uniform in +-RAD, to each "

@@ -16,7 +16,6 @@
 #include "io/FileError.hpp"
 #include "io/PlyFile.hpp"
 #include "io/ScenarioFile.hpp"
-#include "io/SlamConfigFile.hpp"
 #include "io/TumFile.hpp"
 
 namespace uavslam::cli {
@@ -86,13 +85,6 @@ int run_simulate(const SimulateOptions& o) {
 
 }  // namespace
 
-SlamConfig load_config(const std::string& path, const std::vector<std::string>& overrides) {
-  SlamConfig config = path.empty() ? SlamConfig{} : io::load_slam_config(path);
-  for (const std::string& assignment : overrides)
-    io::apply_slam_config_override(config, assignment);
-  return config;
-}
-
 void add_simulate_command(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<SimulateOptions>();
   CLI::App* cmd = app.add_subcommand(
@@ -105,11 +97,9 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", options->out, "output folder (created)")->required();
-  cmd->add_option("--config", options->config,
-                  "SLAM parameters YAML (default: the built-in defaults, as in config/slam.yaml)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--set", options->overrides,
-                  "override one SLAM parameter, e.g. --set icp.iterations=12 (repeatable)");
+  add_slam_config_options(
+      *cmd, options->config, options->overrides,
+      "SLAM parameters YAML (default: the built-in defaults, as in config/slam.yaml)");
   cmd->add_option("--log", options->log,
                   "also write the flight's sensor data as an MCAP recording: channels scan, imu "
                   "and ground_truth, as the sensor processes publish them (replay it with "

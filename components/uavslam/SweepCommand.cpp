@@ -75,10 +75,9 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--scenario", options->scenario, "scenario YAML")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("--config", options->config,
-                  "SLAM parameters YAML (default: the built-in defaults, as in config/slam.yaml)")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--set", options->overrides, "override one SLAM parameter (repeatable)");
+  add_slam_config_options(
+      *cmd, options->config, options->overrides,
+      "SLAM parameters YAML (default: the built-in defaults, as in config/slam.yaml)");
   cmd->add_option("--iterations", options->iterations, "iteration counts to try")
       ->delimiter(',')
       ->check(CLI::PositiveNumber)
