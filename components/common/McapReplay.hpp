@@ -13,9 +13,15 @@
 #include <string>
 #include <variant>
 
+#include <iostream>
+
 #include "common/CarmenReplay.hpp"
+#include "common/IncompatibleQos.hpp"
+#include "common/PacedStream.hpp"
+#include "common/ReaderGrace.hpp"
 #include "common/RealTimePacer.hpp"
 #include "common/SimSourceOptions.hpp"
+#include "common/StopRequest.hpp"
 #include "dds/RecordedMessageStream.hpp"
 
 namespace uavslam::process {
@@ -58,6 +64,32 @@ ReplayCounts replay_recorded(const SimSourceOptions& options, dds::RecordedMessa
   }
   print_new_problems(stream, process);
   return counts;
+}
+
+// A sensor process's whole replay of a recording: waits for the subscribers, publishes every
+// `Msg` of the stream's channels with `writer`, says what it published (`what`: e.g. "scans")
+// and how the replay ended. The process's exit code: 0, or 1 when no subscriber came, the
+// recording had no `channel` or a peer's QoS was incompatible.
+template <typename Msg, typename Writer>
+int replay_recording(const SimSourceOptions& options, dds::RecordedMessageStream& stream,
+                     Writer& writer, const std::string& channel, const std::string& what,
+                     const char* process) {
+  if (!wait_for_subscribers(writer, options.wait_for_subscribers, process)) return 1;
+  QosWatch qos(process);
+  const ReplayCounts counts =
+      replay_recorded(options, stream, process, [&](const dds::RecordedMessage& message) {
+        const auto* sample = std::get_if<Msg>(&message.sample);
+        if (!sample) return false;
+        qos.output(writer);
+        return writer.write(*sample);
+      });
+  std::cerr << process << ": published " << counts.published << " " << what << " of "
+            << stream.path() << ", " << stream.malformed() << " malformed and " << stream.skipped()
+            << " foreign messages skipped, " << counts.late << " published late (> 0.25 s)"
+            << (stop_requested() ? " (stopped)" : "") << "\n";
+  const bool replayed = report_replay_end(stream, counts, channel, process);
+  give_readers_the_last_samples();
+  return replayed ? qos.exit_code() : 1;
 }
 
 }  // namespace uavslam::process

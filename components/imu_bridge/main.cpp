@@ -155,23 +155,7 @@ int replay_recorded_imu(const process::NodeOptions& node, const process::SimSour
                                          node.profile(dds::kImuTopic, "sensor_writer"));
   std::cerr << "imu_bridge: publishing " << topic << " from " << log_path << " at " << o.rate
             << "x the recorded rate (domain " << node.domain << ")\n";
-
-  if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "imu_bridge")) return 1;
-  process::QosWatch qos("imu_bridge");
-  const process::ReplayCounts counts =
-      process::replay_recorded(o, stream, "imu_bridge", [&](const dds::RecordedMessage& message) {
-        const auto* sample = std::get_if<msg::Imu>(&message.sample);
-        if (!sample) return false;
-        qos.output(writer);
-        return writer.write(*sample);
-      });
-  std::cerr << "imu_bridge: published " << counts.published << " samples of " << log_path << ", "
-            << stream.malformed() << " malformed and " << stream.skipped()
-            << " foreign messages skipped, " << counts.late << " published late (> 0.25 s)"
-            << (process::stop_requested() ? " (stopped)" : "") << "\n";
-  const bool replayed = process::report_replay_end(stream, counts, "imu", "imu_bridge");
-  process::give_readers_the_last_samples();
-  return replayed ? qos.exit_code() : 1;
+  return process::replay_recording<msg::Imu>(o, stream, writer, "imu", "samples", "imu_bridge");
 }
 
 int publish(const process::NodeOptions& node, const process::SimSourceOptions& o,

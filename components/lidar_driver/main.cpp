@@ -124,24 +124,8 @@ int replay_recorded_scans(const process::NodeOptions& node, const process::SimSo
   dds::RecordedMessageStream stream(log_path,
                                     process::recorded_topics(node.vehicle, dds::kScanTopic));
   ScanOutput out(node, log_path, number_text(o.rate) + "x the recorded rate");
-  auto& writer = out.writer;
-
-  if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
-  process::QosWatch qos("lidar_driver");
-  const process::ReplayCounts counts =
-      process::replay_recorded(o, stream, "lidar_driver", [&](const dds::RecordedMessage& message) {
-        const auto* scan = std::get_if<msg::LaserScan>(&message.sample);
-        if (!scan) return false;
-        qos.output(writer);
-        return writer.write(*scan);
-      });
-  std::cerr << "lidar_driver: published " << counts.published << " scans of " << log_path << ", "
-            << stream.malformed() << " malformed and " << stream.skipped()
-            << " foreign messages skipped, " << counts.late << " published late (> 0.25 s)"
-            << (process::stop_requested() ? " (stopped)" : "") << "\n";
-  const bool replayed = process::report_replay_end(stream, counts, "scan", "lidar_driver");
-  process::give_readers_the_last_samples();
-  return replayed ? qos.exit_code() : 1;
+  return process::replay_recording<msg::LaserScan>(o, stream, out.writer, "scan", "scans",
+                                                   "lidar_driver");
 }
 
 int stream_from_sensor(const process::NodeOptions& node, const process::SimSourceOptions& o,
