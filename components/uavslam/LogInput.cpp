@@ -192,9 +192,24 @@ McapContents survey_mcap(const std::string& path) {
   return contents;
 }
 
-// "" when the file has a bare `scan` channel, else the prefix "V/" of its single "V/scan" one.
-std::string vehicle_prefix(const std::string& path, const McapContents& contents) {
+std::string channel_list(const McapContents& contents) {
+  std::string topics;
+  for (const auto& [topic, count] : contents.messages)
+    topics += (topics.empty() ? "" : ", ") + topic;
+  return topics.empty() ? "none" : topics;
+}
+
+// The named vehicle's prefix "V/" (dds::topic_name); without a name, "" when the file has a bare
+// `scan` channel, else the prefix of its single "V/scan" one.
+std::string vehicle_prefix(const std::string& path, const McapContents& contents,
+                           const std::string& vehicle) {
   const std::string scan = dds::kScanTopic;
+  if (!vehicle.empty()) {
+    const std::string prefix = vehicle + "/";
+    if (contents.messages.count(prefix + scan)) return prefix;
+    throw io::file_error(path, "no " + prefix + scan + " channel for --vehicle " + vehicle +
+                                   " (channels: " + channel_list(contents) + ")");
+  }
   if (contents.messages.count(scan)) return "";
   std::vector<std::string> prefixes;
   for (const auto& [topic, count] : contents.messages) {
@@ -204,12 +219,12 @@ std::string vehicle_prefix(const std::string& path, const McapContents& contents
     }
   }
   if (prefixes.size() == 1) return prefixes.front();
-  std::string topics;
-  for (const auto& [topic, count] : contents.messages)
-    topics += (topics.empty() ? "" : ", ") + topic;
-  throw io::file_error(path, (prefixes.empty() ? "no scan channel" : "several vehicles' scans") +
-                                 std::string(" (channels: ") + (topics.empty() ? "none" : topics) +
-                                 "): nothing to map");
+  if (prefixes.empty()) {
+    throw io::file_error(
+        path, "no scan channel (channels: " + channel_list(contents) + "): nothing to map");
+  }
+  throw io::file_error(path, "several vehicles' scans (channels: " + channel_list(contents) +
+                                 "): choose one with --vehicle");
 }
 
 class McapInput : public LogInput {
@@ -305,9 +320,10 @@ class McapInput : public LogInput {
 }  // namespace
 
 std::unique_ptr<LogInput> open_mcap_input(const std::string& path,
-                                          std::shared_ptr<const ScanGeometry> geometry) {
+                                          std::shared_ptr<const ScanGeometry> geometry,
+                                          const std::string& vehicle) {
   const McapContents contents = survey_mcap(path);
-  const std::string prefix = vehicle_prefix(path, contents);
+  const std::string prefix = vehicle_prefix(path, contents, vehicle);
   const std::string imu = prefix + dds::kImuTopic;
   const std::uint64_t scans = contents.messages.at(prefix + dds::kScanTopic);
   if (contents.messages.count(imu) == 0) {

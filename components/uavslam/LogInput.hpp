@@ -63,14 +63,16 @@ std::unique_ptr<LogInput> open_carmen_input(const std::string& path, HeadingJitt
 
 // The `scan`, `imu` and (when there) `ground_truth` channels of an MCAP recording (the convention
 // of dds/McapChannels.hpp; with a vehicle prefix, "uav1/scan", when the file has only that
-// vehicle's) in log-time order: IMU samples and scans as the pipeline takes them, each scan with
-// the true pose recorded at its stamp as its truth and start. `geometry`: the sensor's (mount,
-// mirror); null: each scan's beam layout as a planar scanner at the body origin
+// vehicle's or `vehicle` names it) in log-time order: IMU samples and scans as the pipeline takes
+// them, each scan with the true pose recorded at its stamp as its truth and start. `geometry`: the
+// sensor's (mount, mirror); null: each scan's beam layout as a planar scanner at the body origin
 // (dds::MessageScanGeometry). A file cut short is read up to its damage (damage() says where).
 // io::FileError naming the file when it cannot be opened, is not MCAP, holds no whole message, or
-// has scans but no IMU channel (nothing to orient them).
+// has scans but no IMU channel (nothing to orient them), or several vehicles' scans and no
+// `vehicle` to choose.
 std::unique_ptr<LogInput> open_mcap_input(const std::string& path,
-                                          std::shared_ptr<const ScanGeometry> geometry);
+                                          std::shared_ptr<const ScanGeometry> geometry,
+                                          const std::string& vehicle = "");
 
 struct SensorLog;
 // A flight simulated beforehand (simulate_sensors), with its ground truth; the passes share it.

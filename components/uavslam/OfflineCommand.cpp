@@ -37,8 +37,9 @@ namespace {
 struct OfflineOptions {
   std::string carmen;
   std::string scenario;
-  std::string log;     // an MCAP recording
-  std::string sensor;  // the scenario whose sensor (and world) the recording's scans are of
+  std::string log;      // an MCAP recording
+  std::string sensor;   // the scenario whose sensor (and world) the recording's scans are of
+  std::string vehicle;  // the recording's vehicle whose channels are mapped ("" = the only one)
   std::string out;
   std::string config;
   std::vector<std::string> overrides;
@@ -87,9 +88,11 @@ Input open_log_input(const OfflineOptions& o) {
     world.emplace(scenario.world);
   }
   // Opened now, so a file it cannot map is refused before any output is made.
-  std::unique_ptr<LogInput> opened = open_mcap_input(o.log, geometry);
-  return {[path = o.log, geometry] { return open_mcap_input(path, geometry); }, std::move(opened),
-          o.log, std::move(world), false};
+  std::unique_ptr<LogInput> opened = open_mcap_input(o.log, geometry, o.vehicle);
+  return {[path = o.log, geometry, vehicle = o.vehicle] {
+            return open_mcap_input(path, geometry, vehicle);
+          },
+          std::move(opened), o.log, std::move(world), false};
 }
 
 Input open_input(const OfflineOptions& o) {
@@ -310,6 +313,10 @@ void add_offline_command(CLI::App& app, int& exit_code) {
                   "mirror; its world gives the cloud's distance to the true surfaces); without "
                   "it each scan is a planar scanner at the body origin")
       ->check(CLI::ExistingFile)
+      ->needs(log);
+  cmd->add_option("--vehicle", options->vehicle,
+                  "with --log: map this vehicle's channels (VEHICLE/scan, VEHICLE/imu, as its "
+                  "processes' --vehicle named them); default: the recording's only vehicle")
       ->needs(log);
   cmd->add_option("--out", options->out, "output folder (created)")->required();
   add_slam_config_options(*cmd, options->config, options->overrides,

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iterator>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -530,6 +531,53 @@ TEST_F(UavslamCli, OfflineRefusesALogWithScansButNoImu) {
   EXPECT_THAT(r.output, HasSubstr(scans_only + ": its 801 scans"));
   EXPECT_THAT(r.output, HasSubstr("no imu channel: nothing to orient them"));
   EXPECT_FALSE(fs::exists(dir / "o"));
+}
+
+// Every channel of `from` twice, as two vehicles' ("uav1/scan", "uav2/scan", ...): a recording
+// of a fleet.
+void copy_as_two_vehicles(const std::string& from, const std::string& to) {
+  uavslam::io::McapStreamReader reader(from);
+  uavslam::io::McapWriter writer(to);
+  uavslam::io::mcap::Message message;
+  std::map<std::pair<std::uint16_t, int>, std::uint16_t> channels;  // (source, vehicle) -> ours
+  while (reader.next(message)) {
+    const uavslam::io::mcap::Channel& c = reader.channels().at(message.channel_id);
+    for (int vehicle = 1; vehicle <= 2; ++vehicle) {
+      std::uint16_t& channel = channels[{message.channel_id, vehicle}];
+      if (channel == 0) {
+        const uavslam::io::mcap::Schema& s = reader.schemas().at(c.schema_id);
+        channel = writer.add_channel(writer.add_schema(s.name, s.encoding, s.data),
+                                     "uav" + std::to_string(vehicle) + "/" + c.topic,
+                                     c.message_encoding, c.metadata);
+      }
+      writer.write(channel, message.sequence, message.log_time, message.publish_time,
+                   message.data.data(), message.data.size());
+    }
+  }
+  writer.close();
+}
+
+TEST_F(UavslamCli, OfflineMapsTheVehicleItIsToldOfAFleetsRecording) {
+  const RecordedFlight flight = record_short_flight(dir);
+  ASSERT_FALSE(HasFailure());
+  const std::string fleet = (dir / "fleet.mcap").string();
+  copy_as_two_vehicles(flight.log, fleet);
+  const std::string common = "offline --quiet --skip-realtime --log " + fleet + " --out ";
+
+  const CommandResult unnamed = run(common + (dir / "o1").string());
+  EXPECT_EQ(unnamed.exit_code, 2) << unnamed.output;
+  EXPECT_THAT(unnamed.output, HasSubstr("several vehicles' scans"));
+  EXPECT_THAT(unnamed.output, HasSubstr("choose one with --vehicle"));
+  const CommandResult unknown = run(common + (dir / "o3").string() + " --vehicle uav3");
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.output;
+  EXPECT_THAT(unknown.output, HasSubstr("no uav3/scan channel for --vehicle uav3"));
+
+  const fs::path out = dir / "o2";
+  const CommandResult named = run(common + out.string() + " --vehicle uav2");
+  ASSERT_EQ(named.exit_code, 0) << named.output;
+  std::ifstream json(out / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(json);
+  EXPECT_EQ(report.at("offline").at("scans").get<int>(), 801) << report.dump(2);
 }
 
 TEST_F(UavslamCli, OfflineNamesAFileThatIsNotMcap) {
