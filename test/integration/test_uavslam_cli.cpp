@@ -359,6 +359,24 @@ TEST_F(UavslamCli, RunCoversTheFr079Log) {
   EXPECT_LT(figures["short_span"]["rotation_deg"]["mean"].get<double>(), 1.0);
 }
 
+// The scans' own alignment on both Freiburg logs: every relation names scans the log has (the
+// stamps are looked up exactly), and nearly every short relation's two scans align.
+TEST_F(UavslamCli, EvalScansFindsEveryRelationsScansInTheFreiburgLogs) {
+  const fs::path data = fs::path(UAVSLAM_SOURCE_DIR) / ".." / "shared" / "data" / "freiburg";
+  if (!fs::exists(data / "fr079.clf")) GTEST_SKIP() << "no Freiburg data at " << data;
+  for (const std::string log : {"intel", "fr079"}) {
+    const CommandResult r =
+        run("eval --json --relations " + (data / (log + ".relations")).string() + " --scans " +
+            (data / (log + ".clf")).string() + " --config " + source("config/slam_2d_logs.yaml"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json figures = nlohmann::json::parse(r.output);
+    EXPECT_EQ(figures["relations_without_their_scans"].get<int>(), 0) << log;
+    const nlohmann::json& short_span = figures["short_span"];
+    EXPECT_LT(short_span["unmatched"].get<double>(), 0.05 * short_span["relations"].get<double>())
+        << log;
+  }
+}
+
 // The offline dense mapper on the short flight: every output is written and reads back, the dense
 // pass (every point, exact search) is at least as accurate as the real-time pass, and the cloud
 // lies on the simulated world's surfaces.
