@@ -27,6 +27,7 @@
 #include "dds/Participant.hpp"
 #include "dds/Reader.hpp"
 #include "dds/Topics.hpp"
+#include "io/McapCompression.hpp"
 #include "io/McapListing.hpp"
 #include "io/RollingMcapWriter.hpp"
 
@@ -43,6 +44,7 @@ struct RecorderOptions {
   double max_file_seconds = 0;  // 0: no limit
   double flush_seconds = 1;
   double retry_seconds = 5;
+  std::string compression = "none";  // of the chunks: one of io::mcap_compression_names()
   std::string dump;
 };
 
@@ -64,6 +66,7 @@ io::RollingMcapOptions recording_options(const RecorderOptions& o) {
   r.max_file_duration = duration(o.max_file_seconds);
   r.flush_interval = duration(o.flush_seconds);
   r.retry_interval = duration(o.retry_seconds);
+  r.compression = io::parse_mcap_compression(o.compression).value();  // checked when read
   r.report = [](const std::string& line) { std::cerr << "recorder: " << line << "\n"; };
   return r;
 }
@@ -243,13 +246,16 @@ std::vector<std::string> without_duplicates(const std::vector<std::string>& topi
 
 void apply_own_config(const CLI::App& app, const io::YamlReader& section, RecorderOptions& o) {
   section.expect_keys_only({"out", "topics", "queue_capacity", "max_file_mb", "max_file_seconds",
-                            "flush_seconds", "retry_seconds"});
+                            "flush_seconds", "retry_seconds", "compression"});
   if (process::unset(app, "--out")) o.out = section.get_string_or("out", o.out);
   if (process::unset(app, "--topics") && section.has("topics")) {
     o.topics.clear();
     for (const io::YamlReader& t : section.at("topics").elements()) {
       o.topics.push_back(t.as_choice(kRecordableTopics));
     }
+  }
+  if (process::unset(app, "--compression") && section.has("compression")) {
+    o.compression = section.at("compression").as_choice(io::mcap_compression_names());
   }
   if (process::unset(app, "--queue-capacity")) {
     o.queue_capacity =
@@ -306,6 +312,11 @@ int main(int argc, char** argv) {
   app.add_option("--retry-seconds", options.retry_seconds,
                  "after a write error, try a new file this often")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--compression", options.compression,
+                 "compress each chunk of the files: none, lz4 (fast) or zstd (smaller); every "
+                 "MCAP reader of this project and Foxglove read all three")
+      ->check(CLI::IsMember(uavslam::io::mcap_compression_names()))
       ->capture_default_str();
   app.add_option("--dump", options.dump,
                  "list an MCAP file's channels (topic, type, messages, first/last time) and "

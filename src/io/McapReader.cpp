@@ -10,6 +10,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "io/McapCompression.hpp"
+
 namespace uavslam::io {
 
 namespace {
@@ -257,32 +259,57 @@ std::string take_chunk_records(std::uint64_t at, FieldCursor records, MessageSto
   return "";
 }
 
-// Takes the Chunk record found at file offset `at` whose content is `content`: checks its CRC
-// and takes its Schema, Channel and Message records. A compressed chunk is noted in `skipped`.
-// Returns "" or the problem (the messages before it are taken).
+// Checks the CRC of a chunk's (decompressed) records; "" or the problem.
+std::string checked_records(std::uint64_t at, const ChunkFields& chunk, const std::uint8_t* records,
+                            std::uint64_t size) {
+  const std::uint32_t crc = mcap::crc32_update(0, records, size);
+  if (chunk.uncompressed_crc != 0 && crc != chunk.uncompressed_crc) {
+    return "chunk CRC mismatch " + at_byte(at) + " (the Chunk says " + hex(chunk.uncompressed_crc) +
+           ", its " + (chunk.compression.empty() ? "" : "decompressed ") + "records give " +
+           hex(crc) + ")";
+  }
+  return "";
+}
+
+// Takes the Chunk record found at file offset `at` whose content is `content`: decompresses its
+// records if they are compressed ("lz4", "zstd"), checks their length and CRC and takes their
+// Schema, Channel and Message records. A chunk of another compression is noted in `skipped`.
+// Returns "" or the problem (the messages of earlier records are taken; a chunk whose records
+// cannot be checked gives none).
 std::string take_chunk(std::uint64_t at, const Bytes& content, MessageStore& store,
                        std::vector<std::string>& skipped) {
   FieldCursor cursor(content);
   ChunkFields chunk;
   if (!decode(cursor, chunk)) return too_short(static_cast<std::uint8_t>(Opcode::kChunk), at);
-  if (!chunk.compression.empty()) {
+  const std::uint64_t records_at =
+      at + mcap::kRecordPrefixSize + static_cast<std::uint64_t>(chunk.records - content.data());
+  if (chunk.compression.empty()) {
+    if (chunk.uncompressed_size != chunk.records_size) {
+      return "Chunk " + at_byte(at) + " says its records have " +
+             std::to_string(chunk.uncompressed_size) + " bytes, but has " +
+             std::to_string(chunk.records_size);
+    }
+    std::string problem = checked_records(at, chunk, chunk.records, chunk.records_size);
+    if (!problem.empty()) return problem;
+    return take_chunk_records(records_at, FieldCursor(chunk.records, chunk.records_size), store);
+  }
+  if (!can_decompress_chunk(chunk.compression)) {
     skipped.push_back("Chunk " + at_byte(at) + ": compression \"" + chunk.compression +
                       "\" is not supported, its messages were skipped");
     return "";
   }
-  if (chunk.uncompressed_size != chunk.records_size) {
-    return "Chunk " + at_byte(at) + " says its records have " +
-           std::to_string(chunk.uncompressed_size) + " bytes, but has " +
-           std::to_string(chunk.records_size);
+  Bytes records;
+  std::string problem = decompress_chunk_records(
+      chunk.compression, chunk.records, chunk.records_size, chunk.uncompressed_size, records);
+  if (!problem.empty()) return "Chunk " + at_byte(at) + " (" + chunk.compression + "): " + problem;
+  problem = checked_records(at, chunk, records.data(), records.size());
+  if (!problem.empty()) return problem;
+  problem = take_chunk_records(0, FieldCursor(records), store);
+  if (!problem.empty()) {
+    return "Chunk " + at_byte(at) + " (" + chunk.compression +
+           "), in its decompressed records: " + problem;
   }
-  const std::uint32_t crc = mcap::crc32_update(0, chunk.records, chunk.records_size);
-  if (chunk.uncompressed_crc != 0 && crc != chunk.uncompressed_crc) {
-    return "chunk CRC mismatch " + at_byte(at) + " (the Chunk says " + hex(chunk.uncompressed_crc) +
-           ", its records give " + hex(crc) + ")";
-  }
-  const std::uint64_t records_at =
-      at + mcap::kRecordPrefixSize + static_cast<std::uint64_t>(chunk.records - content.data());
-  return take_chunk_records(records_at, FieldCursor(chunk.records, chunk.records_size), store);
+  return "";
 }
 
 // What the summary's records go into (spec "Summary Section").

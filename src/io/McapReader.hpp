@@ -8,8 +8,13 @@
 // Neither throws on bad content: they return every whole message before the damage and report
 // where and why they stopped. Every length is checked against the bytes that are really there
 // before anything is allocated, so a corrupted or hostile file cannot make them allocate more
-// than the file's size. Chunks compressed with "lz4" or "zstd" (we write none) are skipped and
-// reported. Only a file that cannot be opened throws (FileError).
+// than the file's size. Chunks compressed with "lz4" or "zstd" are decompressed (io/
+// McapCompression.hpp): their uncompressed_size is only a claim, so the output grows with what
+// the data really decodes to, a claim over 256 MiB or over what the format can make of the
+// compressed bytes is refused, and a chunk that decodes to another length or CRC stops the read
+// at the Chunk's offset, like a damaged uncompressed chunk (none of its messages are returned,
+// all before it are). Chunks of any other compression are skipped and reported. Only a file
+// that cannot be opened throws (FileError).
 #pragma once
 
 #include <cstdint>
@@ -34,7 +39,7 @@ struct McapReadReport {
   // Why reading stopped early, e.g. "truncated inside a Chunk record at byte 123456"; empty
   // when complete.
   std::string problem;
-  // Records that were read past without their messages, e.g. compressed chunks.
+  // Records that were read past without their messages: chunks of an unknown compression.
   std::vector<std::string> skipped;
 };
 

@@ -17,7 +17,8 @@ using Bytes = std::vector<std::uint8_t>;
 using mcap::Opcode;
 
 // Spec "Chunk": message_start_time, message_end_time, uncompressed_size, uncompressed_crc,
-// compression (empty String), then the u64 length of the records field.
+// compression (a String: its u32 length here, its text added), then the u64 length of the
+// records field.
 constexpr std::uint64_t kChunkFieldsSize = 8 + 8 + 8 + 4 + 4 + 8;
 constexpr std::size_t kMaxIds = std::numeric_limits<std::uint16_t>::max();
 
@@ -288,28 +289,37 @@ void McapWriter::add_to_chunk(const mcap::Channel& channel) {
   has_channel[channel.id] = true;
 }
 
-// Writes the open chunk (Spec "Chunk", uncompressed) and its Message Index records (Spec
-// "Message Index": one per channel in the chunk, right after it), and keeps its Chunk Index.
+// Writes the open chunk (Spec "Chunk": its records compressed whole, the CRC and size of the
+// uncompressed records) and its Message Index records (Spec "Message Index": one per channel in
+// the chunk, right after it, offsets into the uncompressed records), and keeps its Chunk Index.
 void McapWriter::close_chunk() {
   if (chunk_.message_index.empty()) return;
   const Bytes& records = chunk_.records;
+  const bool compressed = options_.compression != McapCompression::kNone;
+  Bytes compressed_records;
+  if (compressed) {
+    compressed_records =
+        compress_chunk_records(options_.compression, records.data(), records.size());
+  }
+  const Bytes& stored = compressed ? compressed_records : records;
   mcap::ChunkIndex index;
   index.message_start_time = chunk_.message_start_time;
   index.message_end_time = chunk_.message_end_time;
   index.chunk_start_offset = offset_;
-  index.compressed_size = records.size();
+  index.compression = mcap_chunk_compression_field(options_.compression);
+  index.compressed_size = stored.size();
   index.uncompressed_size = records.size();
   Bytes head;
   put_le(head, static_cast<std::uint8_t>(Opcode::kChunk));
-  put_le(head, kChunkFieldsSize + records.size());
+  put_le(head, kChunkFieldsSize + index.compression.size() + stored.size());
   put_le(head, chunk_.message_start_time);
   put_le(head, chunk_.message_end_time);
   put_le(head, index.uncompressed_size);
   put_le(head, crc32_of(records));
   put_string(head, index.compression);
-  put_le(head, static_cast<std::uint64_t>(records.size()));
+  put_le(head, static_cast<std::uint64_t>(stored.size()));
   put(head);
-  put(records);
+  put(stored);
   index.chunk_length = offset_ - index.chunk_start_offset;
   Bytes message_indexes;
   for (const auto& [channel_id, entries] : chunk_.message_index) {

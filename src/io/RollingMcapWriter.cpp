@@ -51,6 +51,7 @@ RollingMcapWriter::RollingMcapWriter(std::string base, RollingMcapOptions option
   McapWriterOptions first;
   first.chunk_size = std::numeric_limits<std::size_t>::max();  // chunks end at our flushes
   first.sync_on_flush = options_.sync_on_flush;
+  first.compression = options_.compression;
   file_ = std::make_unique<McapWriter>(rolled_file_path(base_, 0), first);
   next_index_ = 1;
   files_.push_back(file_->path());
@@ -151,6 +152,7 @@ bool RollingMcapWriter::open_next() {
   McapWriterOptions options;
   options.chunk_size = std::numeric_limits<std::size_t>::max();
   options.sync_on_flush = options_.sync_on_flush;
+  options.compression = options_.compression;
   try {
     file_ = std::make_unique<McapWriter>(path, options);
   } catch (const FileError& e) {

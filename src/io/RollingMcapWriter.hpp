@@ -62,6 +62,7 @@ struct RollingMcapOptions {
   Clock::duration retry_interval = std::chrono::seconds(5);
   std::size_t chunk_size = 1 << 20;  // bytes of messages flushed as one chunk at most
   bool sync_on_flush = true;         // fdatasync on every flush: a power cut loses no chunk
+  McapCompression compression = McapCompression::kNone;   // of every chunk of every file
   std::function<Clock::time_point()> clock = Clock::now;  // tests set their own
   // Says what people should know (a new file, a write error, recording resumed); one line each.
   std::function<void(const std::string&)> report = [](const std::string&) {};

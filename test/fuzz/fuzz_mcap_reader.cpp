@@ -1,6 +1,7 @@
 // libFuzzer target: both MCAP readers (src/io/McapReader). Any input must give the complete
 // messages before the damage and a report, never a crash, undefined behaviour or an allocation
-// larger than the file.
+// larger than the file (for an lz4 or zstd chunk: than what its data really decompresses to, at
+// most 256 MiB). The seeds in test/fuzz/corpus/mcap are one file uncompressed, lz4 and zstd.
 #include <cstddef>
 #include <cstdint>
 

@@ -3,7 +3,8 @@
 // holding every sample, byte for byte what the PubSubType serialises; killed by SIGKILL, a file
 // from which every flushed sample is read back; it rolls over to numbered files; and a disk that
 // fills (a file size limit, `ulimit -f`, on the process) costs counted samples and exit code 1,
-// never the DDS side, and recording resumes in a new file.
+// never the DDS side, and recording resumes in a new file. --compression (or the config's
+// `compression`) compresses every chunk.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -42,6 +43,9 @@ constexpr int kKilledDomain = 151;
 constexpr int kRollOverDomain = 152;
 constexpr int kDiskFullDomain = 153;
 constexpr int kConfigDomain = 154;
+constexpr int kCompressionFlagDomain = 230;
+constexpr int kCompressionConfigDomain = 231;
+constexpr int kCompressionErrorDomain = 232;
 constexpr char kVehicle[] = "rec";
 
 // Polls until `done` holds or `timeout` passes (for conditions only a file or a log shows).
@@ -412,6 +416,79 @@ TEST_F(Recorder, ARecordingThatCannotStartIsAConfigurationError) {
   ASSERT_TRUE(recorder.wait(30s));
   EXPECT_EQ(recorder.exit_code(), 2);
   EXPECT_THAT(recorder.log(), HasSubstr(blocker + "/flight_000.mcap"));
+}
+
+// --compression: every chunk of the file compressed as asked, the flag winning over the config.
+class RecorderCompression : public Recorder {
+ protected:
+  // Records 20 scans and 40 IMU samples with `flags` and returns the one file's chunk
+  // compressions (one entry per chunk).
+  std::vector<std::string> record(int domain, const std::vector<std::string>& flags) {
+    const std::string base = path("packed.mcap");
+    std::vector<std::string> all{"--out", base, "--flush-seconds", "0.2"};
+    all.insert(all.end(), flags.begin(), flags.end());
+    process::ChildProcess recorder = start(domain, all);
+    Sensors sensors(domain);
+    EXPECT_TRUE(sensors.matched(recorder));
+    EXPECT_TRUE(sensors.publish(20, 2));
+    EXPECT_TRUE(eventually([&] { return samples_in(path("packed_000.mcap")) >= 60; }, 30s))
+        << recorder.log();
+    EXPECT_EQ(recorder.stop(10s, SIGTERM), 0) << recorder.log();
+    const std::string file = path("packed_000.mcap");
+    io::McapIndexedReader indexed(file);
+    EXPECT_TRUE(indexed.has_summary()) << indexed.summary_problem();
+    std::uint64_t scans = 0;
+    const io::McapReadReport report = indexed.read_messages(0, [&](const io::mcap::Message& m) {
+      if (indexed.channels().at(m.channel_id).topic != "rec/scan") return true;
+      EXPECT_TRUE(decode<msg::LaserScanPubSubType>(m) == scan_number(scans)) << scans;
+      ++scans;
+      return true;
+    });
+    EXPECT_TRUE(report.complete) << report.problem;
+    EXPECT_EQ(scans, 20u);
+    const Dumped listed = dump(file);
+    EXPECT_EQ(listed.exit_code, 0) << listed.output;
+    EXPECT_THAT(listed.output, HasSubstr("60 messages on 2 channels"));
+    std::vector<std::string> compressions;
+    for (const io::mcap::ChunkIndex& index : indexed.chunk_indexes()) {
+      compressions.push_back(index.compression);
+    }
+    return compressions;
+  }
+};
+
+TEST_F(RecorderCompression, TheFlagWinsOverTheConfig) {
+  const std::string config = write("recorder.yaml", "recorder:\n  compression: lz4\n");
+  const auto compressions =
+      record(kCompressionFlagDomain, {"--config", config, "--compression", "zstd"});
+  ASSERT_FALSE(compressions.empty());
+  EXPECT_THAT(compressions, testing::Each(std::string("zstd")));
+}
+
+TEST_F(RecorderCompression, TheConfigChoosesWhenNoFlagDoes) {
+  const std::string config = write("recorder.yaml", "recorder:\n  compression: lz4\n");
+  const auto compressions = record(kCompressionConfigDomain, {"--config", config});
+  ASSERT_FALSE(compressions.empty());
+  EXPECT_THAT(compressions, testing::Each(std::string("lz4")));
+}
+
+TEST_F(RecorderCompression, AnUnknownCompressionIsRefusedWithItsName) {
+  process::ChildProcess flagged(
+      node_argv("recorder", kCompressionErrorDomain, {"--compression", "gzip"}),
+      log_path("flagged"));
+  ASSERT_TRUE(flagged.wait(30s));
+  EXPECT_EQ(flagged.exit_code(), 2);
+  EXPECT_THAT(flagged.log(), HasSubstr("--compression"));
+  EXPECT_THAT(flagged.log(), HasSubstr("gzip"));
+
+  const std::string config = write("recorder.yaml", "recorder:\n  compression: gzip\n");
+  process::ChildProcess configured(
+      node_argv("recorder", kCompressionErrorDomain, {"--config", config}), log_path("configured"));
+  ASSERT_TRUE(configured.wait(30s));
+  EXPECT_EQ(configured.exit_code(), 2);
+  EXPECT_THAT(configured.log(), HasSubstr("recorder.compression"));
+  EXPECT_THAT(configured.log(), HasSubstr("gzip"));
+  EXPECT_THAT(configured.log(), HasSubstr("'none', 'lz4', 'zstd'"));
 }
 
 }  // namespace
