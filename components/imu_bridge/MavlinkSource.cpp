@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <sstream>
 #include <system_error>
 
 #include <msg/ImuPubSubTypes.h>
@@ -26,6 +27,7 @@ namespace {
 
 constexpr char kPrefix[] = "mavlink:";
 constexpr int kReceiveTimeoutMs = 20;
+constexpr double kMaxStreamRate = 1000.0;  // Hz: an interval of 1 ms
 
 double host_now() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
@@ -101,7 +103,26 @@ void print_status(const mavlink::AutopilotSession& session, const std::string& l
   } else {
     std::cerr << "unknown";
   }
-  std::cerr << ", " << s.poses_sent << " poses sent\n";
+  const mavlink::IntervalRequestCounts& r = s.interval_requests;
+  std::cerr << ", " << s.poses_sent << " poses sent, " << r.sent << " stream requests ("
+            << r.accepted << " accepted, " << r.refused << " refused, " << r.unanswered
+            << " unanswered), " << s.reboots << " autopilot reboots\n";
+}
+
+std::string stream_rate(double hz) {
+  std::ostringstream text;
+  if (hz > 0) {
+    text << hz << " Hz";
+  } else {
+    text << "the autopilot's own rate of";
+  }
+  return text.str();
+}
+
+void print_reports(mavlink::AutopilotSession& session) {
+  for (const std::string& line : session.take_reports()) {
+    std::cerr << "imu_bridge: mavlink: " << line << "\n";
+  }
 }
 
 }  // namespace
@@ -120,10 +141,21 @@ void add_mavlink_options(CLI::App& app, MavlinkOptions& options) {
                  "mavlink: seconds between status lines on stderr")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--mavlink-attitude-rate", options.attitude_rate,
+                 "mavlink: Hz of ATTITUDE_QUATERNION to ask the autopilot for "
+                 "(MAV_CMD_SET_MESSAGE_INTERVAL); 0: leave the autopilot's own rate")
+      ->check(CLI::Range(0.0, kMaxStreamRate))
+      ->capture_default_str();
+  app.add_option("--mavlink-imu-rate", options.imu_rate,
+                 "mavlink: Hz of HIGHRES_IMU to ask the autopilot for; 0: leave the autopilot's "
+                 "own rate")
+      ->check(CLI::Range(0.0, kMaxStreamRate))
+      ->capture_default_str();
 }
 
 std::vector<std::string> mavlink_config_keys() {
-  return {"mavlink_bind", "mavlink_pose", "mavlink_status_period"};
+  return {"mavlink_bind", "mavlink_pose", "mavlink_status_period", "mavlink_attitude_rate",
+          "mavlink_imu_rate"};
 }
 
 void apply_mavlink_config(const CLI::App& app, const io::YamlReader& section,
@@ -141,6 +173,14 @@ void apply_mavlink_config(const CLI::App& app, const io::YamlReader& section,
   if (unset(app, "--mavlink-status-period")) {
     options.status_period = section.get_double_or("mavlink_status_period", options.status_period,
                                                   io::NumberRange::positive());
+  }
+  if (unset(app, "--mavlink-attitude-rate")) {
+    options.attitude_rate = section.get_double_or("mavlink_attitude_rate", options.attitude_rate,
+                                                  io::NumberRange::between(0.0, kMaxStreamRate));
+  }
+  if (unset(app, "--mavlink-imu-rate")) {
+    options.imu_rate = section.get_double_or("mavlink_imu_rate", options.imu_rate,
+                                             io::NumberRange::between(0.0, kMaxStreamRate));
   }
 }
 
@@ -162,6 +202,8 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
   if (options.pose_message == "odometry") {
     session_options.pose_message = mavlink::PoseMessage::kOdometry;
   }
+  session_options.attitude_rate = options.attitude_rate;
+  session_options.imu_rate = options.imu_rate;
   mavlink::AutopilotSession session(session_options);
   std::mutex session_mutex;  // the session and link: main loop vs the pose reader's thread
   const mavlink::AutopilotSession::Send send = [&link](const std::vector<std::uint8_t>& bytes) {
@@ -182,7 +224,8 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
   std::cerr << "imu_bridge: publishing " << writer.topic() << " from the autopilot on "
             << link->description() << ", sending " << poses.topic() << " back as "
             << (options.pose_message == "odometry" ? "ODOMETRY" : "VISION_POSITION_ESTIMATE")
-            << " (domain " << node.domain << ")\n";
+            << " (domain " << node.domain << "); asking for " << stream_rate(options.attitude_rate)
+            << " ATTITUDE_QUATERNION and " << stream_rate(options.imu_rate) << " HIGHRES_IMU\n";
 
   const dds::Source imu_source{"imu", node.vehicle};
   std::uint64_t seq = 0;
@@ -206,6 +249,7 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
       heard = true;
       std::cerr << "imu_bridge: autopilot heard on " << link->description() << "\n";
     }
+    print_reports(session);
     if (now >= next_status) {
       print_status(session, link->description(), options.status_period, frames_at_status);
       frames_at_status = session.frame_counts().frames;

@@ -19,12 +19,16 @@ struct MavlinkOptions {
   std::string bind_address = "127.0.0.1";  // UDP: the address the port is bound on
   std::string pose_message = "vision";     // "vision" (VISION_POSITION_ESTIMATE) or "odometry"
   double status_period = 5.0;              // s between status lines on stderr
+  double attitude_rate = 200.0;  // Hz of ATTITUDE_QUATERNION asked of the autopilot; 0: not asked
+  double imu_rate = 200.0;       // Hz of HIGHRES_IMU asked of the autopilot; 0: not asked
 };
 
-// Registers --mavlink-bind, --mavlink-pose, --mavlink-status-period.
+// Registers --mavlink-bind, --mavlink-pose, --mavlink-status-period, --mavlink-attitude-rate,
+// --mavlink-imu-rate.
 void add_mavlink_options(CLI::App& app, MavlinkOptions& options);
-// The keys of the same names (mavlink_bind, mavlink_pose, mavlink_status_period) from the
-// process's config section, where the command line left them unset.
+// The keys of the same names (mavlink_bind, mavlink_pose, mavlink_status_period,
+// mavlink_attitude_rate, mavlink_imu_rate) from the process's config section, where the command
+// line left them unset.
 void apply_mavlink_config(const CLI::App& app, const io::YamlReader& section,
                           MavlinkOptions& options);
 std::vector<std::string> mavlink_config_keys();

@@ -16,10 +16,18 @@ std::int64_t nanoseconds(double seconds) {
   return std::llround(seconds * 1e9);
 }
 
+std::vector<StreamRequest> wanted_streams(const SessionOptions& options) {
+  return {{static_cast<std::uint16_t>(kAttitudeQuaternion), options.attitude_rate},
+          {static_cast<std::uint16_t>(kHighresImu), options.imu_rate}};
+}
+
 }  // namespace
 
 AutopilotSession::AutopilotSession(const SessionOptions& options)
-    : options_(options), writer_(kDefaultSystemId, options.component_id) {}
+    : options_(options),
+      writer_(kDefaultSystemId, options.component_id),
+      interval_requests_(wanted_streams(options), options.command_timeout,
+                         options.command_attempts) {}
 
 void AutopilotSession::receive(const std::uint8_t* data, std::size_t size, double host_now,
                                const OnImu& on_imu, const Send& send) {
@@ -30,11 +38,7 @@ void AutopilotSession::handle(const Frame& frame, double host_now, const OnImu& 
                               const Send& send) {
   switch (frame.message_id) {
     case kHeartbeat:
-      if (decode_heartbeat(frame.payload).type == kMavTypeOnboardController) return;
-      ++counts_.heartbeats;
-      if (!autopilot_system_) writer_.set_system_id(frame.system_id);
-      autopilot_system_ = frame.system_id;
-      autopilot_component_ = frame.component_id;
+      handle_heartbeat(frame, host_now);
       return;
     case kSystemTime:
       clock_.add_one_way(
@@ -43,6 +47,12 @@ void AutopilotSession::handle(const Frame& frame, double host_now, const OnImu& 
       return;
     case kTimesync:
       handle_timesync(frame, host_now, send);
+      return;
+    case kCommandAck:
+      handle_command_ack(frame, host_now);
+      return;
+    case kCommandLong:
+      handle_command_long(frame, send);
       return;
     case kHighresImu: {
       const HighresImu imu = decode_highres_imu(frame.payload);
@@ -66,6 +76,55 @@ void AutopilotSession::handle(const Frame& frame, double host_now, const OnImu& 
     default:
       return;  // our own kind of messages echoed back, or ones we only send
   }
+}
+
+void AutopilotSession::handle_heartbeat(const Frame& frame, double host_now) {
+  const Heartbeat heartbeat = decode_heartbeat(frame.payload);
+  // Ours echoed back, a ground station's, a camera's: not a flight controller.
+  if (heartbeat.type == kMavTypeOnboardController || heartbeat.autopilot == kMavAutopilotInvalid) {
+    return;
+  }
+  ++counts_.heartbeats;
+  const bool first = !autopilot_system_;
+  const bool rebooted = !first && (frame.system_id != *autopilot_system_ ||
+                                   host_now - last_heartbeat_ > options_.heartbeat_timeout);
+  last_heartbeat_ = host_now;
+  if (!first && !rebooted) return;
+  if (rebooted) ++counts_.reboots;
+  writer_.set_system_id(frame.system_id);  // a companion computer takes its vehicle's id
+  autopilot_system_ = frame.system_id;
+  autopilot_component_ = frame.component_id;
+  interval_requests_.start(frame.system_id, frame.component_id);
+}
+
+void AutopilotSession::handle_command_ack(const Frame& frame, double host_now) {
+  if (!autopilot_system_ || frame.system_id != *autopilot_system_ ||
+      frame.component_id != autopilot_component_) {
+    return;
+  }
+  const CommandAck ack = decode_command_ack(frame.payload);
+  // Senders older than the target fields leave them 0; otherwise the answer must be ours.
+  if (ack.target_system != 0 &&
+      (ack.target_system != *autopilot_system_ || ack.target_component != options_.component_id)) {
+    return;
+  }
+  interval_requests_.acknowledge(ack, host_now);
+  counts_.interval_requests = interval_requests_.counts();
+}
+
+// The command protocol wants an answer to every command addressed to us; we carry out none.
+void AutopilotSession::handle_command_long(const Frame& frame, const Send& send) {
+  const CommandLong command = decode_command_long(frame.payload);
+  if (!autopilot_system_ || command.target_system != *autopilot_system_ ||
+      command.target_component != options_.component_id) {
+    return;
+  }
+  CommandAck ack;
+  ack.command = command.command;
+  ack.result = kMavResultUnsupported;
+  ack.target_system = frame.system_id;
+  ack.target_component = frame.component_id;
+  send(writer_.frame(kCommandAck, encode(ack)));
 }
 
 void AutopilotSession::handle_timesync(const Frame& frame, double host_now, const Send& send) {
@@ -114,6 +173,10 @@ void AutopilotSession::tick(double host_now, const Send& send) {
                        encode(Timesync{0, now, *autopilot_system_, autopilot_component_})));
     next_timesync_ = host_now + options_.timesync_period;
   }
+  interval_requests_.tick(host_now, [&](const CommandLong& command) {
+    send(writer_.frame(kCommandLong, encode(command)));
+  });
+  counts_.interval_requests = interval_requests_.counts();
 }
 
 void AutopilotSession::send_pose(const PoseEstimate& estimate, const Send& send) {

@@ -34,6 +34,15 @@ std::map<std::uint32_t, MessageDefinition> make_definitions() {
        base("float", "q3"), base("float", "q4"), base("float", "rollspeed"),
        base("float", "pitchspeed"), base("float", "yawspeed"),
        extension("float", "repr_offset_q", 4)});
+  add(kCommandLong, "COMMAND_LONG",
+      {base("uint8_t", "target_system"), base("uint8_t", "target_component"),
+       base("uint16_t", "command"), base("uint8_t", "confirmation"), base("float", "param1"),
+       base("float", "param2"), base("float", "param3"), base("float", "param4"),
+       base("float", "param5"), base("float", "param6"), base("float", "param7")});
+  add(kCommandAck, "COMMAND_ACK",
+      {base("uint16_t", "command"), base("uint8_t", "result"), extension("uint8_t", "progress"),
+       extension("int32_t", "result_param2"), extension("uint8_t", "target_system"),
+       extension("uint8_t", "target_component")});
   add(kVisionPositionEstimate, "VISION_POSITION_ESTIMATE",
       {base("uint64_t", "usec"), base("float", "x"), base("float", "y"), base("float", "z"),
        base("float", "roll"), base("float", "pitch"), base("float", "yaw"),

@@ -15,6 +15,8 @@ enum MessageId : std::uint32_t {
   kSystemTime = 2,
   kAttitude = 30,
   kAttitudeQuaternion = 31,
+  kCommandLong = 76,
+  kCommandAck = 77,
   kVisionPositionEstimate = 102,
   kHighresImu = 105,
   kTimesync = 111,

@@ -1,5 +1,7 @@
 #include "drivers/mavlink/Messages.hpp"
 
+#include <iterator>
+
 #include "drivers/mavlink/CommonMessages.hpp"
 #include "drivers/mavlink/Payload.hpp"
 
@@ -49,6 +51,15 @@ class FieldReader {
 };
 
 }  // namespace
+
+std::string mav_result_name(std::uint8_t result) {
+  static const char* const kNames[] = {"MAV_RESULT_ACCEPTED", "MAV_RESULT_TEMPORARILY_REJECTED",
+                                       "MAV_RESULT_DENIED",   "MAV_RESULT_UNSUPPORTED",
+                                       "MAV_RESULT_FAILED",   "MAV_RESULT_IN_PROGRESS",
+                                       "MAV_RESULT_CANCELLED"};
+  if (result < std::size(kNames)) return kNames[result];
+  return "MAV_RESULT " + std::to_string(result);
+}
 
 Payload encode(const Heartbeat& m) {
   return FieldWriter(kHeartbeat)
@@ -119,6 +130,33 @@ Payload encode(const Timesync& m) {
   return FieldWriter(kTimesync)
       .set("tc1", m.tc1)
       .set("ts1", m.ts1)
+      .set("target_system", m.target_system)
+      .set("target_component", m.target_component)
+      .payload();
+}
+
+Payload encode(const CommandLong& m) {
+  return FieldWriter(kCommandLong)
+      .set("target_system", m.target_system)
+      .set("target_component", m.target_component)
+      .set("command", m.command)
+      .set("confirmation", m.confirmation)
+      .set("param1", m.param1)
+      .set("param2", m.param2)
+      .set("param3", m.param3)
+      .set("param4", m.param4)
+      .set("param5", m.param5)
+      .set("param6", m.param6)
+      .set("param7", m.param7)
+      .payload();
+}
+
+Payload encode(const CommandAck& m) {
+  return FieldWriter(kCommandAck)
+      .set("command", m.command)
+      .set("result", m.result)
+      .set("progress", m.progress)
+      .set("result_param2", m.result_param2)
       .set("target_system", m.target_system)
       .set("target_component", m.target_component)
       .payload();
@@ -232,6 +270,35 @@ Timesync decode_timesync(const Payload& p) {
   const FieldReader r(kTimesync, p);
   return {r.get<std::int64_t>("tc1"), r.get<std::int64_t>("ts1"),
           r.get<std::uint8_t>("target_system"), r.get<std::uint8_t>("target_component")};
+}
+
+CommandLong decode_command_long(const Payload& p) {
+  const FieldReader r(kCommandLong, p);
+  CommandLong m;
+  m.target_system = r.get<std::uint8_t>("target_system");
+  m.target_component = r.get<std::uint8_t>("target_component");
+  m.command = r.get<std::uint16_t>("command");
+  m.confirmation = r.get<std::uint8_t>("confirmation");
+  m.param1 = r.get<float>("param1");
+  m.param2 = r.get<float>("param2");
+  m.param3 = r.get<float>("param3");
+  m.param4 = r.get<float>("param4");
+  m.param5 = r.get<float>("param5");
+  m.param6 = r.get<float>("param6");
+  m.param7 = r.get<float>("param7");
+  return m;
+}
+
+CommandAck decode_command_ack(const Payload& p) {
+  const FieldReader r(kCommandAck, p);
+  CommandAck m;
+  m.command = r.get<std::uint16_t>("command");
+  m.result = r.get<std::uint8_t>("result");
+  m.progress = r.get<std::uint8_t>("progress");
+  m.result_param2 = r.get<std::int32_t>("result_param2");
+  m.target_system = r.get<std::uint8_t>("target_system");
+  m.target_component = r.get<std::uint8_t>("target_component");
+  return m;
 }
 
 VisionPositionEstimate decode_vision_position_estimate(const Payload& p) {

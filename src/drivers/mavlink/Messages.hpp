@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace uavslam::mavlink {
@@ -19,6 +20,23 @@ inline constexpr std::uint8_t kMavFrameLocalNed = 1;
 inline constexpr std::uint8_t kMavFrameBodyFrd = 12;
 inline constexpr std::uint8_t kMavEstimatorTypeLidar = 7;
 inline constexpr std::uint8_t kMavlinkVersion = 3;  // common.xml's <version>
+
+// MAV_CMD_SET_MESSAGE_INTERVAL (common.xml MAV_CMD 511): param1 the message id, param2 the
+// interval in us (-1: stop the message, 0: its default rate), on the link the command came in on.
+inline constexpr std::uint16_t kMavCmdSetMessageInterval = 511;
+
+// MAV_RESULT: a COMMAND_ACK's result.
+enum MavResult : std::uint8_t {
+  kMavResultAccepted = 0,
+  kMavResultTemporarilyRejected = 1,  // valid, cannot run now: retrying later should work
+  kMavResultDenied = 2,               // supported, invalid parameters: retrying will not work
+  kMavResultUnsupported = 3,          // unknown command
+  kMavResultFailed = 4,               // valid, failed
+  kMavResultInProgress = 5,           // more ACKs follow, the last with the final result
+  kMavResultCancelled = 6,
+};
+// "MAV_RESULT_DENIED", ...; "MAV_RESULT <n>" for a value common.xml may have added since.
+std::string mav_result_name(std::uint8_t result);
 
 struct Heartbeat {
   std::uint8_t type = 0;
@@ -66,6 +84,26 @@ struct Timesync {
   std::uint8_t target_component = 0;
 };
 
+// A command with up to seven parameters (their meaning set by the command); confirmation 0 on
+// the first transmission, counting up on each resend.
+struct CommandLong {
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;  // 0: every component
+  std::uint16_t command = 0;
+  std::uint8_t confirmation = 0;
+  float param1 = 0, param2 = 0, param3 = 0, param4 = 0, param5 = 0, param6 = 0, param7 = 0;
+};
+
+// The answer to a command. target_*: the command's sender (0 from senders predating them).
+struct CommandAck {
+  std::uint16_t command = 0;
+  std::uint8_t result = kMavResultAccepted;
+  std::uint8_t progress = 0;  // percent while kMavResultInProgress
+  std::int32_t result_param2 = 0;
+  std::uint8_t target_system = 0;
+  std::uint8_t target_component = 0;
+};
+
 struct VisionPositionEstimate {
   std::uint64_t usec = 0;
   float x = 0, y = 0, z = 0;           // m, local NED
@@ -96,6 +134,8 @@ Payload encode(const Attitude& m);
 Payload encode(const AttitudeQuaternion& m);
 Payload encode(const HighresImu& m);
 Payload encode(const Timesync& m);
+Payload encode(const CommandLong& m);
+Payload encode(const CommandAck& m);
 Payload encode(const VisionPositionEstimate& m);
 Payload encode(const Odometry& m);
 
@@ -105,6 +145,8 @@ Attitude decode_attitude(const Payload& p);
 AttitudeQuaternion decode_attitude_quaternion(const Payload& p);
 HighresImu decode_highres_imu(const Payload& p);
 Timesync decode_timesync(const Payload& p);
+CommandLong decode_command_long(const Payload& p);
+CommandAck decode_command_ack(const Payload& p);
 VisionPositionEstimate decode_vision_position_estimate(const Payload& p);
 Odometry decode_odometry(const Payload& p);
 

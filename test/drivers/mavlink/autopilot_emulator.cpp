@@ -5,6 +5,13 @@
 // boot clock (offset and drift settable). It answers TIMESYNC requests, and records the
 // VISION_POSITION_ESTIMATE / ODOMETRY it receives to a file, one line each. Faults on request:
 // MAVLink 1 frames, signed frames, corrupted checksums, garbage bytes, lost frames.
+// It answers every COMMAND_LONG addressed to it with a COMMAND_ACK: MAV_CMD_SET_MESSAGE_INTERVAL
+// for a message it can stream ACCEPTED (DENIED with --refuse-intervals or for another message),
+// any other command UNSUPPORTED; --ignore-commands answers none. With --streams-on-request it
+// sends only HEARTBEAT and SYSTEM_TIME until asked, then each message asked for at the interval
+// asked (at most one per IMU sample), as an autopilot whose port streams nothing by default;
+// otherwise its streams stay as above whatever is asked. The summary line on stdout says what
+// was asked of it.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -17,11 +24,14 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <random>
+#include <sstream>
 #include <thread>
 
 #include <CLI/CLI.hpp>
 
+#include "drivers/mavlink/CommonMessages.hpp"
 #include "drivers/mavlink/FrameConventions.hpp"
 #include "drivers/mavlink/FrameReader.hpp"
 #include "drivers/mavlink/FrameWriter.hpp"
@@ -54,18 +64,36 @@ struct EmulatorOptions {
   int bad_crc_every = 0;
   int garbage_every = 0;
   int drop_every = 0;
+  bool streams_on_request = false;
+  bool refuse_intervals = false;
+  bool ignore_commands = false;
   std::string record;
+};
+
+// Our system and component ids, and the messages we can stream.
+constexpr std::uint8_t kSystemId = 1;
+constexpr std::uint8_t kComponentId = 1;
+bool streamable(std::uint32_t id) {
+  return id == kAttitude || id == kAttitudeQuaternion || id == kHighresImu;
+}
+
+// A stream asked for with SET_MESSAGE_INTERVAL, in flight time (s).
+struct Stream {
+  double interval = 0;  // 0: not sent
+  double next_due = 0;
 };
 
 struct Tally {
   int attitude_sent = 0, dropped = 0, corrupted = 0, garbage_bursts = 0;
   int timesync_answered = 0, heartbeats_heard = 0, poses = 0;
+  int highres_imu_sent = 0, interval_requests = 0, resends = 0, commands_answered = 0;
+  std::string intervals_asked;  // "ATTITUDE_QUATERNION 5000 us, ..."
 };
 
 class Emulator {
  public:
   explicit Emulator(const EmulatorOptions& o)
-      : o_(o), writer_(1, 1, o.v1 ? 1 : 2), record_(o.record) {
+      : o_(o), writer_(kSystemId, kComponentId, o.v1 ? 1 : 2), record_(o.record) {
     socket_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
     peer_.sin_family = AF_INET;
     peer_.sin_port = htons(static_cast<std::uint16_t>(o.port));
@@ -79,12 +107,13 @@ class Emulator {
 
   void fly(sim::FlightSimulator& simulator, double start) {
     boot_ = start - o_.boot_age;
+    start_ = start;
     const double t0 = simulator.start_time();
     ImuSample sample;
     int index = 0;
     while (!stop_signal && simulator.next_imu(sample) && sample.stamp - t0 <= o_.duration) {
       listen_until(start + (sample.stamp - t0));
-      send_sample(sample, index++);
+      send_sample(sample, sample.stamp - t0, index++);
     }
     listen_until(host_now() + o_.linger);
   }
@@ -92,7 +121,17 @@ class Emulator {
   const Tally& tally() const { return tally_; }
 
  private:
-  void send_sample(const ImuSample& sample, int index) {
+  // Whether message `id` goes out with the sample at flight time `t`.
+  bool due(MessageId id, double t, int index) {
+    if (!o_.streams_on_request) return id != kAttitude || index % 20 == 0;
+    Stream& stream = streams_[id];
+    if (stream.interval <= 0 || t + 1e-6 < stream.next_due) return false;
+    stream.next_due += stream.interval;
+    if (stream.next_due <= t) stream.next_due = t + stream.interval;
+    return true;
+  }
+
+  void send_sample(const ImuSample& sample, double t, int index) {
     const double now = host_now();
     const std::int64_t ns = autopilot_ns(now);
     std::vector<std::uint8_t> datagram;
@@ -121,7 +160,10 @@ class Emulator {
     imu.ygyro = static_cast<float>(rates.y());
     imu.zgyro = static_cast<float>(rates.z());
     imu.fields_updated = 0x3F;
-    append(datagram, frame(kHighresImu, encode(imu)));
+    if (due(kHighresImu, t, index)) {
+      append(datagram, frame(kHighresImu, encode(imu)));
+      ++tally_.highres_imu_sent;
+    }
     AttitudeQuaternion attitude;
     attitude.time_boot_ms = static_cast<std::uint32_t>(ns / 1'000'000);
     attitude.q1 = static_cast<float>(q.w());
@@ -131,18 +173,8 @@ class Emulator {
     attitude.rollspeed = static_cast<float>(rates.x());
     attitude.pitchspeed = static_cast<float>(rates.y());
     attitude.yawspeed = static_cast<float>(rates.z());
-    std::vector<std::uint8_t> attitude_frame = frame(kAttitudeQuaternion, encode(attitude));
-    ++tally_.attitude_sent;
-    if (o_.drop_every > 0 && index % o_.drop_every == o_.drop_every - 1) {
-      ++tally_.dropped;  // numbered, never sent: a frame lost on the link
-    } else {
-      if (o_.bad_crc_every > 0 && index % o_.bad_crc_every == o_.bad_crc_every - 1) {
-        attitude_frame[o_.v1 ? kHeaderV1 : kHeaderV2] ^= 0x01;  // a payload bit flipped
-        ++tally_.corrupted;
-      }
-      append(datagram, attitude_frame);
-    }
-    if (index % 20 == 0) {
+    if (due(kAttitudeQuaternion, t, index)) append_attitude(datagram, attitude, index);
+    if (due(kAttitude, t, index)) {
       const EulerAngles e = euler_zyx(q);
       Attitude euler;
       euler.time_boot_ms = attitude.time_boot_ms;
@@ -151,7 +183,22 @@ class Emulator {
       euler.yaw = static_cast<float>(e.yaw);
       append(datagram, frame(kAttitude, encode(euler)));
     }
-    send(datagram);
+    if (!datagram.empty()) send(datagram);
+  }
+
+  void append_attitude(std::vector<std::uint8_t>& datagram, const AttitudeQuaternion& attitude,
+                       int index) {
+    std::vector<std::uint8_t> attitude_frame = frame(kAttitudeQuaternion, encode(attitude));
+    ++tally_.attitude_sent;
+    if (o_.drop_every > 0 && index % o_.drop_every == o_.drop_every - 1) {
+      ++tally_.dropped;  // numbered, never sent: a frame lost on the link
+      return;
+    }
+    if (o_.bad_crc_every > 0 && index % o_.bad_crc_every == o_.bad_crc_every - 1) {
+      attitude_frame[o_.v1 ? kHeaderV1 : kHeaderV2] ^= 0x01;  // a payload bit flipped
+      ++tally_.corrupted;
+    }
+    append(datagram, attitude_frame);
   }
 
   std::vector<std::uint8_t> frame(MessageId id, const std::vector<std::uint8_t>& payload) {
@@ -193,6 +240,8 @@ class Emulator {
       send(frame(kTimesync, encode(Timesync{autopilot_ns(host_now()), request.ts1, f.system_id,
                                             f.component_id})));
       ++tally_.timesync_answered;
+    } else if (f.message_id == kCommandLong) {
+      handle_command(f, decode_command_long(f.payload));
     } else if (f.message_id == kVisionPositionEstimate) {
       const VisionPositionEstimate v = decode_vision_position_estimate(f.payload);
       record_ << std::setprecision(9) << "vision " << v.usec << ' ' << v.x << ' ' << v.y << ' '
@@ -210,6 +259,39 @@ class Emulator {
     }
   }
 
+  void handle_command(const Frame& f, const CommandLong& command) {
+    if (command.target_system != kSystemId ||
+        (command.target_component != kComponentId && command.target_component != 0)) {
+      return;
+    }
+    CommandAck ack;
+    ack.command = command.command;
+    ack.result = kMavResultUnsupported;
+    ack.target_system = f.system_id;
+    ack.target_component = f.component_id;
+    if (command.command == kMavCmdSetMessageInterval) ack.result = set_interval(command);
+    if (o_.ignore_commands) return;
+    send(frame(kCommandAck, encode(ack)));
+    ++tally_.commands_answered;
+  }
+
+  std::uint8_t set_interval(const CommandLong& command) {
+    ++tally_.interval_requests;
+    if (command.confirmation > 0) ++tally_.resends;
+    const auto id = static_cast<std::uint32_t>(command.param1);
+    const MessageDefinition* message = find_definition(id);
+    std::ostringstream asked;
+    asked << (tally_.intervals_asked.empty() ? "" : ", ")
+          << (message ? message->name() : std::to_string(id)) << ' ' << command.param2 << " us";
+    tally_.intervals_asked += asked.str();
+    if (!streamable(id) || o_.refuse_intervals) return kMavResultDenied;
+    if (o_.ignore_commands || !o_.streams_on_request) return kMavResultAccepted;
+    // -1: stop; 0: the default, which on this port is nothing.
+    const double interval = command.param2 > 0 ? command.param2 * 1e-6 : 0.0;
+    streams_[static_cast<MessageId>(id)] = Stream{interval, host_now() - start_};
+    return kMavResultAccepted;
+  }
+
   EmulatorOptions o_;
   FrameWriter writer_;
   FrameReader reader_;
@@ -217,6 +299,8 @@ class Emulator {
   int socket_ = -1;
   sockaddr_in peer_{};
   double boot_ = 0;
+  double start_ = 0;  // host time of the flight's start
+  std::map<MessageId, Stream> streams_;
   std::mt19937 random_{11};
   Tally tally_;
 };
@@ -245,6 +329,12 @@ int main(int argc, char** argv) {
   app.add_option("--bad-crc-every", o.bad_crc_every, "corrupt every Nth attitude frame");
   app.add_option("--garbage-every", o.garbage_every, "16 garbage bytes before every Nth sample");
   app.add_option("--drop-every", o.drop_every, "lose every Nth attitude frame");
+  app.add_flag("--streams-on-request", o.streams_on_request,
+               "send only HEARTBEAT and SYSTEM_TIME until a message is asked for with "
+               "MAV_CMD_SET_MESSAGE_INTERVAL");
+  app.add_flag("--refuse-intervals", o.refuse_intervals,
+               "answer MAV_CMD_SET_MESSAGE_INTERVAL with MAV_RESULT_DENIED");
+  app.add_flag("--ignore-commands", o.ignore_commands, "answer no COMMAND_LONG");
   app.add_option("--record", o.record, "file for the poses received")->required();
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, uavslam::mavlink::request_stop);
@@ -258,7 +348,11 @@ int main(int argc, char** argv) {
     std::cout << "autopilot_emulator: sent " << t.attitude_sent << " attitude samples ("
               << t.dropped << " dropped, " << t.corrupted << " corrupted), " << t.garbage_bursts
               << " garbage bursts, answered " << t.timesync_answered << " timesync requests, heard "
-              << t.heartbeats_heard << " heartbeats, recorded " << t.poses << " poses" << std::endl;
+              << t.heartbeats_heard << " heartbeats, recorded " << t.poses << " poses, sent "
+              << t.highres_imu_sent << " HIGHRES_IMU, received " << t.interval_requests
+              << " SET_MESSAGE_INTERVAL (" << t.resends << " resends; "
+              << (t.intervals_asked.empty() ? "none" : t.intervals_asked) << "), answered "
+              << t.commands_answered << " commands" << std::endl;
   } catch (const std::exception& e) {
     std::cerr << "autopilot_emulator: " << e.what() << "\n";
     return 2;

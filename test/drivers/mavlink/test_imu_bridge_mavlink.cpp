@@ -1,8 +1,10 @@
 // imu_bridge against the emulated autopilot (autopilot_emulator) over UDP on 127.0.0.1: the `imu`
 // samples it publishes are the simulator's, converted from NED/FRD back to our frames, one per
 // attitude the emulator sent; faults (signed frames, bad checksums, garbage, lost frames) are
-// counted while the stream goes on; and `pose` samples come out at the autopilot as
-// VISION_POSITION_ESTIMATE / ODOMETRY in NED.
+// counted while the stream goes on; `pose` samples come out at the autopilot as
+// VISION_POSITION_ESTIMATE / ODOMETRY in NED; and from an autopilot that streams only what it is
+// asked for, samples arrive at the rate imu_bridge asked for (MAV_CMD_SET_MESSAGE_INTERVAL), or
+// none when it was told to ask for nothing.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -62,10 +64,11 @@ struct ImuRun {
 
 class ImuBridgeMavlinkTest : public ProcessTest {
  protected:
-  // imu_bridge on `port`, the test reading its `imu`, and the emulator (emulator_argv) flying
-  // from `start` for `duration` s; both stopped, their logs kept.
+  // imu_bridge on `port` (with `bridge_flags`), the test reading its `imu`, and the emulator
+  // (emulator_argv) flying from `start` for `duration` s; both stopped, their logs kept.
   ImuRun run_imu(int domain, int port, double start, double duration,
-                 const std::vector<std::string>& emulator_argv);
+                 const std::vector<std::string>& emulator_argv,
+                 const std::vector<std::string>& bridge_flags = {});
   std::vector<std::string> poses_at_autopilot(
       dds::Writer<msg::PoseWithCovarianceStampedPubSubType>& poses, int domain, int port,
       const std::vector<std::string>& bridge_flags);
@@ -120,7 +123,8 @@ double closest_angle(const std::vector<ImuSample>& truth, const Eigen::Quaternio
 }
 
 ImuRun ImuBridgeMavlinkTest::run_imu(int domain, int port, double start, double duration,
-                                     const std::vector<std::string>& emulator_argv) {
+                                     const std::vector<std::string>& emulator_argv,
+                                     const std::vector<std::string>& bridge_flags) {
   ImuRun run;
   dds::Participant participant(domain, dds::default_profiles_path(), "uavslam_loopback", "test");
   std::mutex mutex;
@@ -130,10 +134,10 @@ ImuRun ImuBridgeMavlinkTest::run_imu(int domain, int port, double start, double 
                                            const std::lock_guard<std::mutex> lock(mutex);
                                            run.received.push_back(dds::from_msg(message));
                                          });
-  ChildProcess bridge(node_argv("imu_bridge", domain,
-                                {"--source", "mavlink:udp:" + std::to_string(port),
-                                 "--mavlink-status-period", "1"}),
-                      log_path("imu_bridge"));
+  std::vector<std::string> flags{"--source", "mavlink:udp:" + std::to_string(port),
+                                 "--mavlink-status-period", "1"};
+  flags.insert(flags.end(), bridge_flags.begin(), bridge_flags.end());
+  ChildProcess bridge(node_argv("imu_bridge", domain, flags), log_path("imu_bridge"));
   EXPECT_TRUE(reader.wait_for_matched(1, 30s)) << bridge.log();
   std::vector<std::string> argv = emulator_argv;
   argv.insert(argv.end(), {"--start-at", std::to_string(start)});
@@ -211,6 +215,79 @@ TEST_F(ImuBridgeMavlinkTest, CountsFaultsAndKeepsPublishing) {
   EXPECT_GE(count_in(run.bridge_log, "sequence gaps"), dropped + corrupted) << run.bridge_log;
   EXPECT_GT(count_in(run.bridge_log, "garbage bytes"), 0) << run.bridge_log;
   EXPECT_GT(count_in(run.bridge_log, "signed\\)"), 0);  // "(0 v1, N signed)"
+}
+
+// The median spacing of the samples' stamps (the autopilot's clock mapped to ours), s.
+double median_spacing(const std::vector<ImuSample>& samples) {
+  std::vector<double> spacing;
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    spacing.push_back(samples[i].stamp - samples[i - 1].stamp);
+  }
+  if (spacing.empty()) return 0;
+  std::nth_element(spacing.begin(), spacing.begin() + static_cast<long>(spacing.size() / 2),
+                   spacing.end());
+  return spacing[spacing.size() / 2];
+}
+
+// An autopilot port that streams nothing by default (ArduPilot's HIGHRES_IMU, a PX4 port's
+// messages it was not configured for): the samples come because imu_bridge asked, at its rate.
+TEST_F(ImuBridgeMavlinkTest, StreamsArriveAtTheRateTheBridgeAskedFor) {
+  constexpr int kDomain = 220;
+  constexpr int kPort = 24570;
+  constexpr double kDuration = 4.0;
+  constexpr double kAskedRate = 50.0;  // a quarter of the emulator's 200 Hz
+  const ImuRun run = run_imu(kDomain, kPort, host_now() + 1.0, kDuration,
+                             emulator_argv(kPort, kDuration, {"--streams-on-request"}),
+                             {"--mavlink-attitude-rate", "50", "--mavlink-imu-rate", "50"});
+  ASSERT_EQ(run.bridge_exit, 0) << run.bridge_log;
+  EXPECT_EQ(count_in(run.emulator_log, "SET_MESSAGE_INTERVAL"), 2) << run.emulator_log;
+  EXPECT_NE(run.emulator_log.find("ATTITUDE_QUATERNION 20000 us"), std::string::npos)
+      << run.emulator_log;
+  EXPECT_NE(run.emulator_log.find("HIGHRES_IMU 20000 us"), std::string::npos) << run.emulator_log;
+  EXPECT_EQ(count_in(run.bridge_log, "accepted"), 2) << run.bridge_log;
+  // 50 Hz over the 4 s flight is 200 attitudes; 200 Hz (not asked, or ignored) would be 800.
+  const long sent = count_in(run.emulator_log, "attitude samples");
+  EXPECT_GE(sent, static_cast<long>(0.7 * kAskedRate * kDuration)) << run.emulator_log;
+  EXPECT_LE(sent, static_cast<long>(1.1 * kAskedRate * kDuration)) << run.emulator_log;
+  EXPECT_EQ(static_cast<long>(run.received.size()), sent) << run.bridge_log;
+  EXPECT_NEAR(median_spacing(run.received), 1.0 / kAskedRate, 2e-3);
+  ASSERT_FALSE(run.received.empty());
+  // HIGHRES_IMU was asked for too: the accelerations are the simulator's, gravity included.
+  EXPECT_GT(run.received.back().linear_acceleration.norm(), 5.0);
+}
+
+TEST_F(ImuBridgeMavlinkTest, RatesOfZeroAskForNothing) {
+  constexpr int kDomain = 221;
+  constexpr int kPort = 24571;
+  constexpr double kDuration = 3.0;
+  const ImuRun run = run_imu(kDomain, kPort, host_now() + 1.0, kDuration,
+                             emulator_argv(kPort, kDuration, {"--streams-on-request"}),
+                             {"--mavlink-attitude-rate", "0", "--mavlink-imu-rate", "0"});
+  ASSERT_EQ(run.bridge_exit, 0) << run.bridge_log;
+  // The bridge heard the autopilot (it only sends TIMESYNC requests then) and asked for nothing.
+  EXPECT_GE(count_in(run.emulator_log, "timesync requests"), 1) << run.emulator_log;
+  EXPECT_EQ(count_in(run.emulator_log, "SET_MESSAGE_INTERVAL"), 0) << run.emulator_log;
+  EXPECT_EQ(count_in(run.emulator_log, "attitude samples"), 0) << run.emulator_log;
+  EXPECT_EQ(count_in(run.bridge_log, "stream requests"), 0) << run.bridge_log;
+  EXPECT_TRUE(run.received.empty());
+}
+
+TEST_F(ImuBridgeMavlinkTest, RefusedStreamsAreReported) {
+  constexpr int kDomain = 222;
+  constexpr int kPort = 24572;
+  constexpr double kDuration = 3.0;
+  const ImuRun run =
+      run_imu(kDomain, kPort, host_now() + 1.0, kDuration,
+              emulator_argv(kPort, kDuration, {"--streams-on-request", "--refuse-intervals"}));
+  ASSERT_EQ(run.bridge_exit, 0) << run.bridge_log;
+  EXPECT_EQ(count_in(run.emulator_log, "SET_MESSAGE_INTERVAL"), 2) << run.emulator_log;
+  EXPECT_EQ(count_in(run.emulator_log, "resends"), 0) << run.emulator_log;  // not retried
+  EXPECT_EQ(count_in(run.bridge_log, "refused"), 2) << run.bridge_log;
+  EXPECT_NE(run.bridge_log.find("ATTITUDE_QUATERNION at 200 Hz (5000 us): refused "
+                                "(MAV_RESULT_DENIED)"),
+            std::string::npos)
+      << run.bridge_log;
+  EXPECT_TRUE(run.received.empty());
 }
 
 // 0.2 m steps at 10 Hz, then a 5 m jump (a relocalisation): the reset counter steps.

@@ -58,6 +58,8 @@ TEST(MavlinkDefinitions, DeriveThePublishedCrcExtraAndLengths) {
       {kSystemTime, "SYSTEM_TIME", 137, 12, 12},
       {kAttitude, "ATTITUDE", 39, 28, 28},
       {kAttitudeQuaternion, "ATTITUDE_QUATERNION", 246, 32, 48},
+      {kCommandLong, "COMMAND_LONG", 152, 33, 33},
+      {kCommandAck, "COMMAND_ACK", 143, 3, 10},
       {kVisionPositionEstimate, "VISION_POSITION_ESTIMATE", 158, 32, 117},
       {kHighresImu, "HIGHRES_IMU", 93, 62, 63},
       {kTimesync, "TIMESYNC", 34, 16, 18},
@@ -85,6 +87,17 @@ TEST(MavlinkDefinitions, OrderFieldsBySizeKeepingExtensionsLast) {
   EXPECT_EQ(odometry.offset("reset_counter"), 230u);  // extensions: XML order, not re-sorted
   EXPECT_EQ(odometry.offset("quality"), 232u);
   EXPECT_EQ(definition(kHighresImu).offset("fields_updated"), 60u);
+  const MessageDefinition& command = definition(kCommandLong);
+  EXPECT_EQ(command.offset("param1"), 0u);  // XML order: target_system first, floats first here
+  EXPECT_EQ(command.offset("param7"), 24u);
+  EXPECT_EQ(command.offset("command"), 28u);
+  EXPECT_EQ(command.offset("target_system"), 30u);
+  EXPECT_EQ(command.offset("confirmation"), 32u);
+  const MessageDefinition& ack = definition(kCommandAck);
+  EXPECT_EQ(ack.offset("result"), 2u);
+  EXPECT_EQ(ack.offset("progress"), 3u);  // extensions in XML order, the int32 not moved ahead
+  EXPECT_EQ(ack.offset("result_param2"), 4u);
+  EXPECT_EQ(ack.offset("target_component"), 9u);
 }
 
 // HEARTBEAT from a companion computer, MAVLink 2, every byte written out from the spec.
@@ -149,8 +162,21 @@ TEST(MavlinkFrames, EveryMessageRoundTrips) {
   append(stream, writer.frame(kHighresImu, encode(imu)));
   append(stream, writer.frame(kTimesync, encode(sync)));
   append(stream, writer.frame(kOdometry, encode(odometry)));
+  CommandLong command;
+  command.target_system = 3;
+  command.command = kMavCmdSetMessageInterval;
+  command.confirmation = 2;
+  command.param2 = 2500.0f;
+  command.param7 = -1.0f;
+  append(stream, writer.frame(kCommandLong, encode(command)));
+  CommandAck ack;
+  ack.command = kMavCmdSetMessageInterval;
+  ack.result = kMavResultDenied;
+  ack.result_param2 = -7;
+  ack.target_component = 197;
+  append(stream, writer.frame(kCommandAck, encode(ack)));
   const std::vector<Frame> frames = read_all(reader, stream, 7);
-  ASSERT_EQ(frames.size(), 4u);
+  ASSERT_EQ(frames.size(), 6u);
   const AttitudeQuaternion aq2 = decode_attitude_quaternion(frames[0].payload);
   EXPECT_EQ(aq2.time_boot_ms, aq.time_boot_ms);
   EXPECT_EQ(aq2.q2, aq.q2);
@@ -166,7 +192,19 @@ TEST(MavlinkFrames, EveryMessageRoundTrips) {
   EXPECT_EQ(odometry2.pose_covariance[20], 0.75f);
   EXPECT_EQ(odometry2.quality, -1);
   EXPECT_EQ(odometry2.frame_id, kMavFrameLocalNed);
-  EXPECT_EQ(reader.counts().frames, 4u);
+  const CommandLong command2 = decode_command_long(frames[4].payload);
+  EXPECT_EQ(command2.target_system, 3);
+  EXPECT_EQ(command2.command, kMavCmdSetMessageInterval);
+  EXPECT_EQ(command2.confirmation, 2);
+  EXPECT_EQ(command2.param2, 2500.0f);
+  EXPECT_EQ(command2.param7, -1.0f);
+  const CommandAck ack2 = decode_command_ack(frames[5].payload);
+  EXPECT_EQ(ack2.command, kMavCmdSetMessageInterval);
+  EXPECT_EQ(ack2.result, kMavResultDenied);
+  EXPECT_EQ(ack2.result_param2, -7);
+  EXPECT_EQ(ack2.target_component, 197);
+  EXPECT_EQ(mav_result_name(kMavResultDenied), "MAV_RESULT_DENIED");
+  EXPECT_EQ(reader.counts().frames, 6u);
   EXPECT_EQ(reader.counts().sequence_gaps, 0u);
 }
 
