@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iterator>
 #include <map>
@@ -518,54 +519,21 @@ TEST_F(UavslamCli, OfflineMapsTheCompletePartOfACutLog) {
   EXPECT_LT(report.at("offline").at("errors").at("ate_rmse_m").get<double>(), 0.1);
 }
 
-// Copies the recording's `topic` channel alone into `to`.
-void copy_channel(const std::string& from, const std::string& to, const std::string& topic) {
+// The messages of `from` whose topic `rename` gives new topics, each written once per new topic
+// (none: the channel is left out).
+void copy_channels(const std::string& from, const std::string& to,
+                   const std::function<std::vector<std::string>(const std::string&)>& rename) {
   uavslam::io::McapStreamReader reader(from);
   uavslam::io::McapWriter writer(to);
   uavslam::io::mcap::Message message;
-  std::uint16_t channel = 0;
+  std::map<std::pair<std::uint16_t, std::string>, std::uint16_t> channels;  // ours by source, topic
   while (reader.next(message)) {
     const uavslam::io::mcap::Channel& c = reader.channels().at(message.channel_id);
-    if (c.topic != topic) continue;
-    if (channel == 0) {
-      const uavslam::io::mcap::Schema& s = reader.schemas().at(c.schema_id);
-      channel = writer.add_channel(writer.add_schema(s.name, s.encoding, s.data), c.topic,
-                                   c.message_encoding, c.metadata);
-    }
-    writer.write(channel, message.sequence, message.log_time, message.publish_time,
-                 message.data.data(), message.data.size());
-  }
-  writer.close();
-}
-
-TEST_F(UavslamCli, OfflineRefusesALogWithScansButNoImu) {
-  const RecordedFlight flight = record_short_flight(dir);
-  ASSERT_FALSE(HasFailure());
-  const std::string scans_only = (dir / "scans_only.mcap").string();
-  copy_channel(flight.log, scans_only, "scan");
-  const CommandResult r =
-      run("offline --quiet --log " + scans_only + " --out " + (dir / "o").string());
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_THAT(r.output, HasSubstr(scans_only + ": its 801 scans"));
-  EXPECT_THAT(r.output, HasSubstr("no imu channel: nothing to orient them"));
-  EXPECT_FALSE(fs::exists(dir / "o"));
-}
-
-// Every channel of `from` twice, as two vehicles' ("uav1/scan", "uav2/scan", ...): a recording
-// of a fleet.
-void copy_as_two_vehicles(const std::string& from, const std::string& to) {
-  uavslam::io::McapStreamReader reader(from);
-  uavslam::io::McapWriter writer(to);
-  uavslam::io::mcap::Message message;
-  std::map<std::pair<std::uint16_t, int>, std::uint16_t> channels;  // (source, vehicle) -> ours
-  while (reader.next(message)) {
-    const uavslam::io::mcap::Channel& c = reader.channels().at(message.channel_id);
-    for (int vehicle = 1; vehicle <= 2; ++vehicle) {
-      std::uint16_t& channel = channels[{message.channel_id, vehicle}];
+    for (const std::string& topic : rename(c.topic)) {
+      std::uint16_t& channel = channels[{message.channel_id, topic}];
       if (channel == 0) {
         const uavslam::io::mcap::Schema& s = reader.schemas().at(c.schema_id);
-        channel = writer.add_channel(writer.add_schema(s.name, s.encoding, s.data),
-                                     "uav" + std::to_string(vehicle) + "/" + c.topic,
+        channel = writer.add_channel(writer.add_schema(s.name, s.encoding, s.data), topic,
                                      c.message_encoding, c.metadata);
       }
       writer.write(channel, message.sequence, message.log_time, message.publish_time,
@@ -575,11 +543,28 @@ void copy_as_two_vehicles(const std::string& from, const std::string& to) {
   writer.close();
 }
 
+TEST_F(UavslamCli, OfflineRefusesALogWithScansButNoImu) {
+  const RecordedFlight flight = record_short_flight(dir);
+  ASSERT_FALSE(HasFailure());
+  const std::string scans_only = (dir / "scans_only.mcap").string();
+  copy_channels(flight.log, scans_only, [](const std::string& topic) {
+    return topic == "scan" ? std::vector<std::string>{topic} : std::vector<std::string>{};
+  });
+  const CommandResult r =
+      run("offline --quiet --log " + scans_only + " --out " + (dir / "o").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_THAT(r.output, HasSubstr(scans_only + ": its 801 scans"));
+  EXPECT_THAT(r.output, HasSubstr("no imu channel: nothing to orient them"));
+  EXPECT_FALSE(fs::exists(dir / "o"));
+}
+
 TEST_F(UavslamCli, OfflineMapsTheVehicleItIsToldOfAFleetsRecording) {
   const RecordedFlight flight = record_short_flight(dir);
   ASSERT_FALSE(HasFailure());
   const std::string fleet = (dir / "fleet.mcap").string();
-  copy_as_two_vehicles(flight.log, fleet);
+  copy_channels(flight.log, fleet, [](const std::string& topic) {  // a fleet's recording
+    return std::vector<std::string>{"uav1/" + topic, "uav2/" + topic};
+  });
   const std::string common = "offline --quiet --skip-realtime --log " + fleet + " --out ";
 
   const CommandResult unnamed = run(common + (dir / "o1").string());

@@ -21,11 +21,14 @@
 #include "io/Mcap.hpp"
 #include "io/McapReader.hpp"
 #include "io/McapWriter.hpp"
+#include "unit/io/McapReadAll.hpp"
 
 namespace uavslam::io {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
+using test::indexed_from;
+using test::stream_all;
 using ::testing::HasSubstr;
 
 // --- Bytes, built by hand as the spec's "Serialization" section says -------------------------
@@ -116,27 +119,6 @@ void write_file(const std::string& path, const Bytes& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(bytes.data()),
             static_cast<std::streamsize>(bytes.size()));
-}
-
-std::vector<mcap::Message> stream_all(const std::string& path, McapReadReport* report = nullptr) {
-  McapStreamReader reader(path);
-  std::vector<mcap::Message> messages;
-  mcap::Message message;
-  while (reader.next(message)) messages.push_back(message);
-  if (report) *report = reader.report();
-  return messages;
-}
-
-std::vector<mcap::Message> indexed_from(const std::string& path, std::uint64_t start_time,
-                                        McapReadReport* report = nullptr) {
-  McapIndexedReader reader(path);
-  std::vector<mcap::Message> messages;
-  const McapReadReport result = reader.read_messages(start_time, [&](const mcap::Message& m) {
-    messages.push_back(m);
-    return true;
-  });
-  if (report) *report = result;
-  return messages;
 }
 
 bool same(const mcap::Message& a, const mcap::Message& b) {

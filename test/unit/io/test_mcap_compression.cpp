@@ -21,11 +21,14 @@
 #include "io/McapReader.hpp"
 #include "io/McapWriter.hpp"
 #include "io/RollingMcapWriter.hpp"
+#include "unit/io/McapReadAll.hpp"
 
 namespace uavslam::io {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
+using test::indexed_from;
+using test::stream_all;
 using ::testing::AnyOf;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
@@ -98,27 +101,6 @@ bool is_subsequence(const std::vector<mcap::Message>& got, const std::vector<mca
     ++next;
   }
   return true;
-}
-
-std::vector<mcap::Message> stream_all(const std::string& path, McapReadReport* report = nullptr) {
-  McapStreamReader reader(path);
-  std::vector<mcap::Message> messages;
-  mcap::Message message;
-  while (reader.next(message)) messages.push_back(message);
-  if (report) *report = reader.report();
-  return messages;
-}
-
-std::vector<mcap::Message> indexed_from(const std::string& path, std::uint64_t start_time,
-                                        McapReadReport* report = nullptr) {
-  McapIndexedReader reader(path);
-  std::vector<mcap::Message> messages;
-  const McapReadReport result = reader.read_messages(start_time, [&](const mcap::Message& m) {
-    messages.push_back(m);
-    return true;
-  });
-  if (report) *report = result;
-  return messages;
 }
 
 // `count` messages on two channels, payloads like a laser scan's (slowly varying ranges, so
