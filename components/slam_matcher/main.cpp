@@ -37,6 +37,7 @@
 namespace uavslam {
 namespace {
 using Clock = std::chrono::steady_clock;
+constexpr double kDegreesPerRadian = 57.29577951308232;  // 180 / pi
 
 struct MatcherOptions {
   std::string sensor = "config/scenarios/demo.yaml";
@@ -73,6 +74,8 @@ class MatcherNode {
         scenario_(o.geometry_from_scan ? sim::Scenario{} : io::load_scenario(o.sensor)),
         config_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
         geometry_(o.geometry_from_scan ? nullptr : sim::make_scan_geometry(scenario_.lidar)),
+        message_geometry_(o.geometry_from_scan ? dds::MessageScanGeometry()
+                                               : dds::MessageScanGeometry(placed_on_vehicle())),
         slam_(config_, initial_position(o)),
         queue_(uses_odometry(config_), o.max_scan_backlog_s),
         max_scan_backlog_s_(o.max_scan_backlog_s),
@@ -148,9 +151,7 @@ class MatcherNode {
   void process(matcher::ScanQueue::Work& work) {
     for (const ImuSample& sample : work.imu) slam_.add_imu(sample);
     for (const OdometrySample& sample : work.odometry) odometry_prior_.add(sample);
-    const Scan scan = dds::from_msg(
-        work.scan.message,
-        geometry_from_scan_ ? message_geometry_.for_message(work.scan.message) : geometry_);
+    const Scan scan = dds::from_msg(work.scan.message, geometry_for(work.scan.message));
     const auto start = Clock::now();
     const Vec3 predicted_motion = odometry_ ? odometry_prior_.motion_to(scan.stamp) : Vec3::Zero();
     const ScanReport report = slam_.process_scan(scan, predicted_motion);
@@ -173,6 +174,31 @@ class MatcherNode {
     status_.write(
         status_of(report, scan, processing_ms, (wall_seconds() - work.scan.published_at) * 1e3));
     rejected_ += !report.accepted();
+  }
+
+  // A layout placed where the sensor file puts the scanner (mount, floor mirror).
+  dds::MessageScanGeometry::Place placed_on_vehicle() const {
+    return [lidar = scenario_.lidar](double angle_min, double angle_increment, int beams) {
+      return sim::planar_scan_geometry(lidar, angle_min, angle_increment, beams);
+    };
+  }
+
+  // The sensor file's geometry; a planar scan with another beam count (a real scanner's own
+  // layout: a UTM-30LX sends 1081 steps) keeps its layout, placed on the vehicle as the file says.
+  std::shared_ptr<const ScanGeometry> geometry_for(const msg::LaserScan& message) {
+    if (geometry_from_scan_) return message_geometry_.for_message(message);
+    if (message.ranges().size() == geometry_->directions.size() || scenario_.lidar.rings > 1) {
+      return geometry_;
+    }
+    if (!layout_noted_) {
+      layout_noted_ = true;
+      std::cerr << "slam_matcher: the scans have " << message.ranges().size() << " beams from "
+                << message.angle_min() * kDegreesPerRadian << " deg by "
+                << message.angle_increment() * kDegreesPerRadian << " deg, " << scenario_.name
+                << "'s lidar " << geometry_->directions.size()
+                << ": matching them with their own layout, mounted as the sensor file says\n";
+    }
+    return message_geometry_.for_message(message);
   }
 
   msg::MatcherStatus status_of(const ScanReport& report, const Scan& scan, double processing_ms,
@@ -238,6 +264,7 @@ class MatcherNode {
   std::uint32_t keyframes_ = 0;
   std::uint64_t statuses_ = 0;
   std::uint64_t rejected_ = 0;
+  bool layout_noted_ = false;
 };
 
 void apply_own_config(const CLI::App& app, const io::YamlReader& section, MatcherOptions& o) {

@@ -15,8 +15,9 @@ std::shared_ptr<const ScanGeometry> MessageScanGeometry::for_message(
   angle_increment_ = message.angle_increment();
   range_min_ = message.range_min();
   range_max_ = message.range_max();
-  ScanGeometry geometry =
-      ScanGeometry::planar(angle_min_, angle_increment_, static_cast<int>(beams));
+  const int count = static_cast<int>(beams);
+  ScanGeometry geometry = place_ ? place_(angle_min_, angle_increment_, count)
+                                 : ScanGeometry::planar(angle_min_, angle_increment_, count);
   geometry.min_range = range_min_;
   geometry.max_range = range_max_;
   geometry_ = std::make_shared<const ScanGeometry>(std::move(geometry));

@@ -22,10 +22,10 @@ double beam_increment(const LidarSpec& spec) {
   return even_step(deg_to_rad(spec.fov_deg), spec.beams);
 }
 
-// A fan pointing to -z, spread across the vertical plane that holds the first beam.
-void deflect_into_floor_mirror(const LidarSpec& spec, std::vector<Vec3>& directions) {
-  const int mirrored = std::min(spec.floor_mirror.beams, spec.beams);
-  const double azimuth = first_beam_azimuth(spec);
+// A fan pointing to -z, spread across the vertical plane that holds the first beam (at `azimuth`).
+void deflect_into_floor_mirror(const LidarSpec& spec, double azimuth,
+                               std::vector<Vec3>& directions) {
+  const int mirrored = std::min(spec.floor_mirror.beams, static_cast<int>(directions.size()));
   const double spread = deg_to_rad(spec.floor_mirror.spread_deg);
   const double step = even_step(spread, mirrored);
   const double first = mirrored > 1 ? -spread / 2.0 : 0.0;
@@ -61,17 +61,20 @@ Eigen::Isometry3d lidar_mount(const LidarSpec& spec) {
   return mount;
 }
 
-std::shared_ptr<const ScanGeometry> make_scan_geometry(const LidarSpec& spec) {
-  ScanGeometry geometry =
-      ScanGeometry::planar(first_beam_azimuth(spec), beam_increment(spec), spec.beams);
-  if (spec.rings > 1) {
-    geometry.directions = multi_ring_directions(spec);
-  } else if (spec.floor_mirror.beams > 0) {
-    deflect_into_floor_mirror(spec, geometry.directions);
-  }
+ScanGeometry planar_scan_geometry(const LidarSpec& spec, double angle_min, double angle_increment,
+                                  int beams) {
+  ScanGeometry geometry = ScanGeometry::planar(angle_min, angle_increment, beams);
+  if (spec.floor_mirror.beams > 0) deflect_into_floor_mirror(spec, angle_min, geometry.directions);
   geometry.min_range = spec.min_range;
   geometry.max_range = spec.max_range;
   geometry.mount = lidar_mount(spec);
+  return geometry;
+}
+
+std::shared_ptr<const ScanGeometry> make_scan_geometry(const LidarSpec& spec) {
+  ScanGeometry geometry =
+      planar_scan_geometry(spec, first_beam_azimuth(spec), beam_increment(spec), spec.beams);
+  if (spec.rings > 1) geometry.directions = multi_ring_directions(spec);  // and no mirror
   return std::make_shared<const ScanGeometry>(std::move(geometry));
 }
 

@@ -5,6 +5,7 @@
 
 #include "SimTestHelpers.hpp"
 #include "sim/Angles.hpp"
+#include "sim/LidarGeometry.hpp"
 #include "sim/LidarSimulator.hpp"
 #include "sim/Trajectory.hpp"
 
@@ -74,6 +75,37 @@ TEST(LidarGeometry, FloorMirrorBeamsFanDownwardInTheFirstBeamsPlane) {
   EXPECT_NEAR(std::acos(-geometry->directions[0].z()), deg_to_rad(10.0), 1e-12);
   EXPECT_NEAR(std::acos(-geometry->directions[29].z()), deg_to_rad(10.0), 1e-12);
   EXPECT_EQ(geometry->directions[30].z(), 0.0);  // the rest stay planar
+}
+
+// A real UTM-30LX's own layout (1081 steps of 0.25 deg from -135 deg) on the configured mount and
+// mirror: the beams where the scans say, the mirror's fan in the plane of their first beam.
+TEST(LidarGeometry, AScansOwnLayoutKeepsTheSensorsMountAndMirror) {
+  LidarSpec spec;  // 1080 beams over 270 deg
+  spec.mount_position = Vec3(0.05, 0.0, 0.1);
+  spec.floor_mirror.beams = 30;
+  spec.floor_mirror.spread_deg = 20.0;
+  const double first = deg_to_rad(-135.0);
+  const double step = deg_to_rad(0.25);
+  const ScanGeometry geometry = planar_scan_geometry(spec, first, step, 1081);
+  ASSERT_EQ(geometry.directions.size(), 1081u);
+  EXPECT_NEAR(geometry.directions[540].x(), 1.0, 1e-12);  // the middle step looks ahead
+  EXPECT_NEAR(std::atan2(geometry.directions[1080].y(), geometry.directions[1080].x()),
+              deg_to_rad(135.0), 1e-12);
+  const Vec3 plane_normal(-std::sin(first), std::cos(first), 0.0);
+  EXPECT_NEAR(geometry.directions[0].dot(plane_normal), 0.0, 1e-12);
+  EXPECT_LT(geometry.directions[29].z(), -0.9);  // mirrored
+  EXPECT_EQ(geometry.directions[30].z(), 0.0);
+  EXPECT_TRUE(geometry.mount.translation().isApprox(spec.mount_position));
+  EXPECT_EQ(geometry.max_range, spec.max_range);
+
+  // The configured layout is the same construction.
+  const auto configured = make_scan_geometry(spec);
+  const ScanGeometry same =
+      planar_scan_geometry(spec, -deg_to_rad(135.0), deg_to_rad(270.0) / 1079, 1080);
+  ASSERT_EQ(configured->directions.size(), same.directions.size());
+  for (std::size_t i = 0; i < same.directions.size(); ++i) {
+    EXPECT_TRUE(configured->directions[i].isApprox(same.directions[i], 1e-12)) << i;
+  }
 }
 
 TEST(LidarGeometry, MultiRingHasBeamsTimesRingsDirections) {
