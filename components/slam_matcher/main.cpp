@@ -71,7 +71,7 @@ class MatcherNode {
   MatcherNode(const process::NodeOptions& node, const MatcherOptions& o)
       : vehicle_(node.vehicle),
         geometry_from_scan_(o.geometry_from_scan),
-        scenario_(o.geometry_from_scan ? sim::Scenario{} : io::load_scenario(o.sensor)),
+        scenario_(o.geometry_from_scan ? sim::Scenario{} : io::load_sensor(o.sensor)),
         config_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
         geometry_(o.geometry_from_scan ? nullptr : sim::make_scan_geometry(scenario_.lidar)),
         message_geometry_(o.geometry_from_scan ? dds::MessageScanGeometry()
@@ -298,7 +298,8 @@ int main(int argc, char** argv) {
   uavslam::MatcherOptions options;
   uavslam::process::add_node_options(app, node);
   app.add_option("--sensor", options.sensor,
-                 "YAML whose `lidar` section describes the scanner (a scenario file)")
+                 "YAML whose `lidar` section describes the scanner: a sensor file "
+                 "(config/sensors/*.yaml) or a scenario file")
       ->capture_default_str();
   app.add_option("--slam-config", options.slam_config,
                  "SLAM parameters YAML (default: the built-in defaults, as config/slam.yaml); "

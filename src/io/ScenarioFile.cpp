@@ -156,4 +156,14 @@ sim::Scenario load_scenario(const std::string& path) {
   return scenario;
 }
 
+sim::Scenario load_sensor(const std::string& path) {
+  const YamlReader root = YamlReader::from_file(path, "sensor");
+  if (root.find("world")) return load_scenario(path);
+  root.expect_keys_only({"name", "lidar"});
+  sim::Scenario sensor;
+  sensor.name = root.get_string_or("name", std::filesystem::path(path).stem().string());
+  sensor.lidar = read_lidar(root.at("lidar"));
+  return sensor;
+}
+
 }  // namespace uavslam::io

@@ -149,6 +149,26 @@ TEST_F(YamlFileTest, MissingRequiredKeyIsNamed) {
   EXPECT_THAT(message, HasSubstr(path + ": missing required key 'world.room'"));
 }
 
+// The matcher's --sensor: a file of a real scanner alone, or a whole scenario.
+TEST_F(YamlFileTest, ASensorFileHoldsOnlyTheScanner) {
+  const sim::Scenario shipped =
+      load_sensor(std::string(UAVSLAM_SOURCE_DIR) + "/config/sensors/hokuyo_utm30lx.yaml");
+  EXPECT_EQ(shipped.name, "hokuyo_utm30lx");
+  EXPECT_EQ(shipped.lidar.beams, 1081);
+  EXPECT_EQ(shipped.lidar.floor_mirror.beams, 30);
+  EXPECT_TRUE(shipped.waypoints.empty());
+
+  const sim::Scenario scenario = load_sensor(write("scenario.yaml", kMinimalScenario));
+  EXPECT_EQ(scenario.waypoints.size(),
+            load_scenario(write("again.yaml", kMinimalScenario)).waypoints.size());
+
+  const std::string no_lidar = write("no_lidar.yaml", "name: bare\n");
+  EXPECT_THAT(config_error_of([&] { load_sensor(no_lidar); }),
+              HasSubstr(no_lidar + ": missing required key 'lidar'"));
+  const std::string flight = write("flight.yaml", "lidar: {beams: 10}\ntrajectory: {}\n");
+  EXPECT_THAT(config_error_of([&] { load_sensor(flight); }), HasSubstr("trajectory"));
+}
+
 TEST_F(YamlFileTest, IllTypedValueNamesFileKeyAndValue) {
   const std::string path =
       write("fast.yaml", std::string(kMinimalScenario) + "lidar:\n  rate_hz: fast\n");
