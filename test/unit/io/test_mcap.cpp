@@ -28,6 +28,8 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 using test::indexed_from;
+using test::is_subsequence;
+using test::same;
 using test::stream_all;
 using ::testing::HasSubstr;
 
@@ -121,25 +123,9 @@ void write_file(const std::string& path, const Bytes& bytes) {
             static_cast<std::streamsize>(bytes.size()));
 }
 
-bool same(const mcap::Message& a, const mcap::Message& b) {
-  return a.channel_id == b.channel_id && a.sequence == b.sequence && a.log_time == b.log_time &&
-         a.publish_time == b.publish_time && a.data == b.data;
-}
-
 // True when `got` are the first got.size() messages of `all`.
 bool is_prefix(const std::vector<mcap::Message>& got, const std::vector<mcap::Message>& all) {
   return got.size() <= all.size() && std::equal(got.begin(), got.end(), all.begin(), same);
-}
-
-// True when every message of `got` is one of `all`, in the same order: nothing made up.
-bool is_subsequence(const std::vector<mcap::Message>& got, const std::vector<mcap::Message>& all) {
-  auto next = all.begin();
-  for (const mcap::Message& m : got) {
-    next = std::find_if(next, all.end(), [&](const mcap::Message& a) { return same(a, m); });
-    if (next == all.end()) return false;
-    ++next;
-  }
-  return true;
 }
 
 // Writes `count` messages on three channels of two schemas (sizes 0..~300 bytes, log times

@@ -28,6 +28,8 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 using test::indexed_from;
+using test::is_subsequence;
+using test::same;
 using test::stream_all;
 using ::testing::AnyOf;
 using ::testing::HasSubstr;
@@ -83,24 +85,8 @@ ChunkBytes chunk_at(const Bytes& file, std::uint64_t at) {
   return chunk;
 }
 
-bool same(const mcap::Message& a, const mcap::Message& b) {
-  return a.channel_id == b.channel_id && a.sequence == b.sequence && a.log_time == b.log_time &&
-         a.publish_time == b.publish_time && a.data == b.data;
-}
-
 bool equal(const std::vector<mcap::Message>& a, const std::vector<mcap::Message>& b) {
   return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), same);
-}
-
-// True when every message of `got` is one of `all`, in the same order: nothing made up.
-bool is_subsequence(const std::vector<mcap::Message>& got, const std::vector<mcap::Message>& all) {
-  auto next = all.begin();
-  for (const mcap::Message& m : got) {
-    next = std::find_if(next, all.end(), [&](const mcap::Message& a) { return same(a, m); });
-    if (next == all.end()) return false;
-    ++next;
-  }
-  return true;
 }
 
 // `count` messages on two channels, payloads like a laser scan's (slowly varying ranges, so
