@@ -9,7 +9,7 @@ JOBS       ?= $(shell nproc)
 export CCACHE_BASEDIR := $(CURDIR)
 UAVSLAM    := $(BUILD)/bin/uavslam
 
-.PHONY: all deps configure build demo simulate offline test test-unit test-asan fuzz bench bench-latency bench-link sweep real-logs \
+.PHONY: all deps configure build programs demo simulate offline test test-unit test-asan fuzz bench bench-latency bench-link sweep real-logs \
         format format-check clean
 
 all: build
@@ -23,21 +23,25 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j$(JOBS)
 
+# The six processes and the uavslam tool, without the tests: what demo, simulate and offline run.
+programs: configure
+	cmake --build $(BUILD) -j$(JOBS) --target programs
+
 # The main job: the six DDS processes (config/launch/demo.yaml) fly 90 s of the demo scenario in
 # real time on loopback, then the run's summary (out/demo).
-demo: build
+demo: programs
 	rm -rf out/demo
 	$(UAVSLAM) launch config/launch/demo.yaml
 	$(UAVSLAM) report out/demo
 
 # The whole 180 s demo flight mapped in-process (no DDS), as fast as the pipeline goes.
-simulate: build
+simulate: programs
 	$(UAVSLAM) simulate --scenario config/scenarios/demo.yaml --config config/slam.yaml \
 	  --out out/simulate
 
 # The offline dense mapper on the demo flight's log (written by simulate --log), with the real-time
-# pass over the same log for comparison (README "Offline dense mapping").
-offline: build
+# pass over the same log for comparison (docs/recordings.md "Offline dense mapping").
+offline: programs
 	$(UAVSLAM) simulate --quiet --scenario config/scenarios/demo.yaml --config config/slam.yaml \
 	  --out out/simulate --log out/demo_flight.mcap
 	$(UAVSLAM) offline --log out/demo_flight.mcap --sensor config/scenarios/demo.yaml \
@@ -73,7 +77,7 @@ fuzz: deps
 	  echo "fuzz: fuzz_$${reader}_reader: $$(grep -h '^Done' $$log), no crash"; \
 	done
 
-# Speed: the matcher benchmark's tables and the end-to-end latency (README "Speed").
+# Speed: the matcher benchmark's tables and the end-to-end latency (docs/speed.md).
 bench: build
 	bash test/bench/matcher_table.sh --build-dir $(BUILD)
 	$(MAKE) bench-latency
@@ -85,19 +89,19 @@ bench-latency: build
 	$(BUILD)/test/bench/bench_latency --scenario config/scenarios/demo.yaml --duration 60 \
 	  --realtime-priority 50
 
-# The system across an emulated WiFi link between two network namespaces (needs root; README
-# "Two hosts over WiFi"): loopback reference, matcher on board, matcher on the ground, an outage.
+# The system across an emulated WiFi link between two network namespaces (needs root;
+# docs/deployment.md "Two hosts over WiFi"): loopback reference, matcher on board, matcher on the ground, an outage.
 bench-link: build
 	$(BUILD)/test/net/bench_link --scenario config/scenarios/demo.yaml --duration 60 \
 	  --outage-at 30 --out out/bench_link
 
-# Accuracy and time against ICP iterations and FLANN checks (README "Choosing the iteration count").
-sweep: build
+# Accuracy and time against ICP iterations and FLANN checks (docs/algorithm.md "Choosing the iteration count").
+sweep: programs
 	$(UAVSLAM) sweep --scenario config/scenarios/demo.yaml --config config/slam.yaml \
 	  --iterations 1,2,3,5,10,20 --checks exact,16,64
 
-# The Freiburg benchmark table of README "Real logs" (needs ../shared/data/freiburg; ~5 min).
-real-logs: build
+# The Freiburg benchmark table of docs/real-logs.md (needs ../shared/data/freiburg; ~5 min).
+real-logs: programs
 	bash test/bench/real_logs_table.sh --build-dir $(BUILD)
 
 format:

@@ -43,7 +43,7 @@ std::optional<io::YamlReader> apply_node_config(const CLI::App& app, NodeOptions
 
 // Switches the whole process to the SCHED_FIFO real-time scheduler at `priority` (1..99; 0 does
 // nothing): on this loaded 2-core machine it cut the matcher's scan-to-pose p99 from ~4.5 ms to
-// ~1.3 ms (README "Speed"). Threads created afterwards inherit it. Throws io::ConfigError saying
+// ~1.3 ms (docs/speed.md). Threads created afterwards inherit it. Throws io::ConfigError saying
 // why the scheduler refused (it needs root or CAP_SYS_NICE).
 void enter_realtime(int priority);
 

@@ -30,7 +30,6 @@
 #include "common/RunNode.hpp"
 #include "common/SimSourceOptions.hpp"
 #include "common/StopRequest.hpp"
-#include "core/Heading.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/Participant.hpp"
 #include "dds/RecordedMessageStream.hpp"
@@ -38,6 +37,7 @@
 #include "dds/Topics.hpp"
 #include "dds/Writer.hpp"
 #include "imu_bridge/MavlinkSource.hpp"
+#include "io/CarmenSamples.hpp"
 #include "io/CarmenScanStream.hpp"
 #include "io/ScenarioFile.hpp"
 #include "sim/FlightSimulator.hpp"
@@ -72,23 +72,9 @@ int publish_imu(const process::NodeOptions& node, const process::SimSourceOption
   return qos.exit_code();
 }
 
-// The odometry heading as an orientation sample; no rates or accelerations (none were logged).
-ImuSample orientation_of(const io::TimedCarmenScan& scan) {
-  ImuSample sample;
-  sample.stamp = scan.stamp;
-  sample.orientation = yaw_rotation(scan.scan.laser_pose.theta);
-  sample.angular_velocity = Vec3::Zero();
-  sample.linear_acceleration = Vec3::Zero();
-  return sample;
-}
-
-// The laser's odometry pose, planar: the motion prior's source (`odom`).
-Pose odometry_of(const io::TimedCarmenScan& scan) {
-  Pose pose;
-  pose.stamp = scan.stamp;
-  pose.position = Vec3(scan.scan.laser_pose.x, scan.scan.laser_pose.y, 0.0);
-  pose.orientation = yaw_rotation(scan.scan.laser_pose.theta);
-  return pose;
+// The odometry pose, planar: the motion prior's source (`odom`).
+Pose odometry_pose(const io::CarmenSamples& samples) {
+  return {samples.odometry.stamp, samples.odometry.position, samples.orientation.orientation};
 }
 
 int replay_odometry(const process::NodeOptions& node, const process::SimSourceOptions& o,
@@ -111,17 +97,20 @@ int replay_odometry(const process::NodeOptions& node, const process::SimSourceOp
             << lead * 1e3 << " ms ahead of the scans (domain " << node.domain << ")\n";
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "imu_bridge")) return 1;
+  // The scans go out as LaserScan messages, which carry no mount: the laser is the body.
+  io::CarmenSensor sensor(io::CarmenBody::Laser);
   const dds::Source imu_source{"imu", node.vehicle};
   const dds::Source odometry_source{"odom", node.vehicle};
   process::QosWatch qos("imu_bridge");
   std::uint64_t odometry_published = 0;
   const process::ReplayCounts counts = process::replay_carmen_scans(
       o, stream, lead, "imu_bridge", [&](const io::TimedCarmenScan& scan) {
+        const io::CarmenSamples samples = sensor.samples_of(scan);
         qos.output(writer);
         qos.output(odometry);
         odometry_published += odometry.write(
-            dds::to_msg(odometry_of(scan), 1.0f, scan.index, scan.index, odometry_source));
-        return writer.write(dds::to_msg(orientation_of(scan), scan.index, imu_source));
+            dds::to_msg(odometry_pose(samples), 1.0f, scan.index, scan.index, odometry_source));
+        return writer.write(dds::to_msg(samples.orientation, scan.index, imu_source));
       });
   std::cerr << "imu_bridge: published " << counts.published << " odometry headings and "
             << odometry_published << " odometry poses of " << log_path << ", "

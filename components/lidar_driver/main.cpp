@@ -32,6 +32,7 @@
 #include "dds/SimulatedSensorMessages.hpp"
 #include "dds/Topics.hpp"
 #include "dds/Writer.hpp"
+#include "io/CarmenSamples.hpp"
 #include "io/CarmenScanStream.hpp"
 #include "io/ScenarioFile.hpp"
 #include "io/TumFile.hpp"
@@ -87,13 +88,12 @@ int publish_scans(const process::NodeOptions& node, const process::SimSourceOpti
   return qos.exit_code();
 }
 
-// The scan of a CARMEN log as published: sensor_msgs/LaserScan's beam layout is the log's.
-msg::LaserScan to_msg(const io::TimedCarmenScan& timed, const dds::Source& source) {
-  const io::CarmenScan& carmen = timed.scan;
-  auto geometry = std::make_shared<const ScanGeometry>(io::to_scan_geometry(carmen));
-  Scan scan = io::to_core_scan(carmen, std::move(geometry), timed.index);
-  scan.stamp = timed.stamp;
-  return dds::to_msg(scan, carmen.start_angle, carmen.angle_increment, source);
+// The scan of a CARMEN log as published: sensor_msgs/LaserScan's beam layout is the log's, and it
+// carries no mount, so the laser is the body (as imu_bridge --source carmen:FILE publishes it).
+msg::LaserScan to_msg(io::CarmenSensor& sensor, const io::TimedCarmenScan& timed,
+                      const dds::Source& source) {
+  const Scan scan = sensor.samples_of(timed).scan;
+  return dds::to_msg(scan, timed.scan.start_angle, timed.scan.angle_increment, source);
 }
 
 int replay_scans(const process::NodeOptions& node, const process::SimSourceOptions& o,
@@ -104,11 +104,12 @@ int replay_scans(const process::NodeOptions& node, const process::SimSourceOptio
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "lidar_driver")) return 1;
   const dds::Source source{"laser", node.vehicle};
+  io::CarmenSensor sensor(io::CarmenBody::Laser);
   process::QosWatch qos("lidar_driver");
   const process::ReplayCounts counts = process::replay_carmen_scans(
       o, stream, 0.0, "lidar_driver", [&](const io::TimedCarmenScan& scan) {
         qos.output(writer);
-        return writer.write(to_msg(scan, source));
+        return writer.write(to_msg(sensor, scan, source));
       });
   std::cerr << "lidar_driver: published " << counts.published << " scans of " << log_path << ", "
             << stream.malformed_lines() << " malformed lines skipped, " << counts.late

@@ -20,7 +20,6 @@
 #include "common/NodeOptions.hpp"
 #include "common/RunNode.hpp"
 #include "common/StopRequest.hpp"
-#include "core/OccupancyOctree.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/OccupancyMapConversions.hpp"
 #include "dds/Participant.hpp"
@@ -30,6 +29,7 @@
 #include "io/FileError.hpp"
 #include "io/OctreeFile.hpp"
 #include "io/PlyFile.hpp"
+#include "maps/OccupancyOctree.hpp"
 
 namespace uavslam {
 namespace {

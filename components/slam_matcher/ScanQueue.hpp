@@ -15,7 +15,6 @@
 
 #include <msg/LaserScan.h>
 
-#include "core/OdometryBuffer.hpp"
 #include "core/Types.hpp"
 
 namespace uavslam::matcher {

@@ -1,6 +1,6 @@
-// slam_matcher: subscribes `scan` and `imu`, runs the SLAM pipeline (src/core) on the freshest
-// scan, publishes `pose`, `map_points` and `matcher_status`. The sensor (mount, floor mirror,
-// beam layout) comes from the `lidar` section of a scenario or sensor YAML, or, with
+// slam_matcher: subscribes `scan` and `imu`, runs the vehicle's SLAM (src/slam/VehicleSlam) on the
+// waiting scans, publishes `pose`, `map_points` and `matcher_status`. The sensor (mount, floor
+// mirror, beam layout) comes from the `lidar` section of a scenario or sensor YAML, or, with
 // --geometry-from-scan, from each scan message as a planar scanner at the body origin (replayed
 // 2D logs: lidar_driver --source carmen:FILE). With `icp.motion_prior: odometry` in the SLAM
 // config it also subscribes `odom` (wheel odometry, imu_bridge --source carmen:FILE) and gives each
@@ -22,9 +22,8 @@
 #include "common/NodeOptions.hpp"
 #include "common/RunNode.hpp"
 #include "common/StopRequest.hpp"
-#include "core/OdometryPrior.hpp"
-#include "core/SlamPipeline.hpp"
 #include "dds/Conversions.hpp"
+#include "dds/MatcherMessages.hpp"
 #include "dds/MessageScanGeometry.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Reader.hpp"
@@ -32,18 +31,17 @@
 #include "dds/Writer.hpp"
 #include "io/ScenarioFile.hpp"
 #include "io/SlamConfigFile.hpp"
-#include "sim/LidarGeometry.hpp"
+#include "slam/VehicleSlam.hpp"
 
 namespace uavslam {
 namespace {
-using Clock = std::chrono::steady_clock;
 constexpr double kDegreesPerRadian = 57.29577951308232;  // 180 / pi
 
 struct MatcherOptions {
   std::string sensor = "config/scenarios/demo.yaml";
   std::string slam_config;
   std::vector<double> initial_position;  // empty: the scenario's first waypoint
-  bool geometry_from_scan = false;       // the beam layout of each scan message; no scenario
+  bool geometry_from_scan = false;       // the beam layout of each scan message; no sensor file
   double max_scan_backlog_s = matcher::ScanQueue::kDefaultBacklog;
 };
 
@@ -55,32 +53,16 @@ double to_seconds(const eprosima::fastrtps::rtps::Time_t& t) {
   return t.seconds() + t.nanosec() * 1e-9;
 }
 
-// How good the match was, for consumers of `pose`: 1 for a perfect fit, 0 at the rejection limit.
-float quality_of(const ScanReport& report, const SlamConfig& config) {
-  if (report.outcome == ScanOutcome::MapInitialised) return 1.0f;
-  return static_cast<float>(
-      std::clamp(1.0 - report.error_after / config.icp.max_error_after, 0.0, 1.0));
-}
-
-bool uses_odometry(const SlamConfig& config) {
-  return config.icp.motion_prior == "odometry";
-}
-
 class MatcherNode {
  public:
   MatcherNode(const process::NodeOptions& node, const MatcherOptions& o)
       : vehicle_(node.vehicle),
-        geometry_from_scan_(o.geometry_from_scan),
-        scenario_(o.geometry_from_scan ? sim::Scenario{} : io::load_sensor(o.sensor)),
-        config_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
-        geometry_(o.geometry_from_scan ? nullptr : sim::make_scan_geometry(scenario_.lidar)),
-        message_geometry_(o.geometry_from_scan ? dds::MessageScanGeometry()
-                                               : dds::MessageScanGeometry(placed_on_vehicle())),
-        slam_(config_, initial_position(o)),
-        queue_(uses_odometry(config_), o.max_scan_backlog_s),
+        sensor_(o.geometry_from_scan ? io::SensorFile{} : io::load_sensor(o.sensor)),
+        geometries_(o.geometry_from_scan ? dds::MessageScanGeometry()
+                                         : dds::MessageScanGeometry(sensor_.sensor.lidar)),
+        slam_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
+        queue_(uses_odometry(), o.max_scan_backlog_s),
         max_scan_backlog_s_(o.max_scan_backlog_s),
-        // The odometry is as much "at the scan's time" as the orientation: the same tolerance.
-        odometry_prior_(config_.imu.max_gap),
         participant_(node.domain, process::profiles_path(node), node.participant_profile,
                      "slam_matcher"),
         pose_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic),
@@ -99,12 +81,14 @@ class MatcherNode {
              node.profile(dds::kImuTopic, "sensor_reader"),
              [this](const msg::Imu& m, const eprosima::fastdds::dds::SampleInfo&) {
                queue_.push_imu(dds::from_msg(m));
-             }) {}
+             }) {
+    slam_.start_at(initial_position(o));
+  }
 
   int run() {
     std::cerr << "slam_matcher: matching " << dds::topic_name(vehicle_, dds::kScanTopic)
-              << (geometry_from_scan_ ? " with the beam layout of each scan"
-                                      : " with the sensor of " + scenario_.name)
+              << (geometries_.sensor_geometry() ? " with the sensor of " + sensor_.sensor.name
+                                                : " with the beam layout of each scan")
               << "\n";
     while (!process::stop_requested()) {
       check_qos();
@@ -117,6 +101,8 @@ class MatcherNode {
   }
 
  private:
+  bool uses_odometry() const { return slam_.odometry_prior() != nullptr; }
+
   void check_qos() {
     qos_.input(scans_);
     qos_.input(imu_);
@@ -130,15 +116,14 @@ class MatcherNode {
     if (o.initial_position.size() == 3) {
       return {o.initial_position[0], o.initial_position[1], o.initial_position[2]};
     }
-    if (scenario_.waypoints.empty()) return Vec3::Zero();
-    return scenario_.waypoints.front().position;
+    return sensor_.take_off.value_or(Vec3::Zero());
   }
 
   // Created before the imu reader: an imu_bridge waiting for its imu subscribers then finds this
   // one matched too (the same participant announces its readers in order).
   std::unique_ptr<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>> make_odometry_reader(
       const process::NodeOptions& node) {
-    if (!uses_odometry(config_)) return nullptr;
+    if (!uses_odometry()) return nullptr;
     return std::make_unique<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>>(
         participant_, dds::topic_name(vehicle_, dds::kOdometryTopic),
         node.profile(dds::kOdometryTopic, "sensor_reader"),
@@ -150,108 +135,58 @@ class MatcherNode {
 
   void process(matcher::ScanQueue::Work& work) {
     for (const ImuSample& sample : work.imu) slam_.add_imu(sample);
-    for (const OdometrySample& sample : work.odometry) odometry_prior_.add(sample);
+    for (const OdometrySample& sample : work.odometry) slam_.add_odometry(sample);
     const Scan scan = dds::from_msg(work.scan.message, geometry_for(work.scan.message));
-    const auto start = Clock::now();
-    const Vec3 predicted_motion = odometry_ ? odometry_prior_.motion_to(scan.stamp) : Vec3::Zero();
-    const ScanReport report = slam_.process_scan(scan, predicted_motion);
-    if (odometry_ && (report.accepted() || report.dead_reckoned)) {
-      odometry_prior_.scan_posed(scan.stamp);
-    }
-    const double processing_ms =
-        std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    const VehicleScan result = slam_.process_scan(scan);
     const dds::Source source{"map", vehicle_};
-    if (report.accepted()) {
-      pose_.write(
-          dds::to_msg(report.pose, quality_of(report, config_), scan.sequence, poses_++, source));
+    if (result.report.accepted()) {
+      pose_.write(dds::pose_message(result.report, slam_.config(), scan.sequence,
+                                    counts_.accepted++, source));
     }
-    if (report.map_updated) {
-      const Vec3 origin =
-          report.pose.position + report.pose.orientation * scan.geometry->mount.translation();
-      map_points_.write(
-          dds::to_msg(report.added_points, origin, report.pose.stamp, keyframes_++, source));
-    }
-    status_.write(
-        status_of(report, scan, processing_ms, (wall_seconds() - work.scan.published_at) * 1e3));
-    rejected_ += !report.accepted();
+    if (result.keyframe) map_points_.write(dds::keyframe_message(*result.keyframe, source));
+    counts_.rejected += !result.report.accepted();
+    counts_.received = queue_.scans_received();
+    counts_.skipped = queue_.scans_skipped();
+    status_.write(dds::status_message(result.report, scan, result.pipeline_seconds * 1e3,
+                                      (wall_seconds() - work.scan.published_at) * 1e3, counts_,
+                                      statuses_++, source));
   }
 
-  // A layout placed where the sensor file puts the scanner (mount, floor mirror).
-  dds::MessageScanGeometry::Place placed_on_vehicle() const {
-    return [lidar = scenario_.lidar](double angle_min, double angle_increment, int beams) {
-      return sim::planar_scan_geometry(lidar, angle_min, angle_increment, beams);
-    };
-  }
-
-  // The sensor file's geometry; a planar scan with another beam count (a real scanner's own
-  // layout: a UTM-30LX sends 1081 steps) keeps its layout, placed on the vehicle as the file says.
+  // The sensor file's geometry, or the scan's own layout (said once when it differs).
   std::shared_ptr<const ScanGeometry> geometry_for(const msg::LaserScan& message) {
-    if (geometry_from_scan_) return message_geometry_.for_message(message);
-    if (message.ranges().size() == geometry_->directions.size() || scenario_.lidar.rings > 1) {
-      return geometry_;
-    }
-    if (!layout_noted_) {
+    std::shared_ptr<const ScanGeometry> geometry = geometries_.for_message(message);
+    if (geometries_.own_layout_used() && !layout_noted_) {
       layout_noted_ = true;
       std::cerr << "slam_matcher: the scans have " << message.ranges().size() << " beams from "
                 << message.angle_min() * kDegreesPerRadian << " deg by "
-                << message.angle_increment() * kDegreesPerRadian << " deg, " << scenario_.name
-                << "'s lidar " << geometry_->directions.size()
+                << message.angle_increment() * kDegreesPerRadian << " deg, " << sensor_.sensor.name
+                << "'s lidar " << geometries_.sensor_geometry()->directions.size()
                 << ": matching them with their own layout, mounted as the sensor file says\n";
     }
-    return message_geometry_.for_message(message);
-  }
-
-  msg::MatcherStatus status_of(const ScanReport& report, const Scan& scan, double processing_ms,
-                               double latency_ms) {
-    msg::MatcherStatus s;
-    msg::Header header;
-    header.stamp(dds::to_msg_time(scan.stamp));
-    header.frame_id("map");
-    header.seq(statuses_++);
-    header.vehicle_id(vehicle_);
-    s.header(header);
-    s.scan_seq(scan.sequence);
-    s.outcome(to_string(report.outcome));
-    s.iterations(report.iterations);
-    s.error_before(report.error_before);
-    s.error_after(report.error_after);
-    s.points_used(static_cast<std::uint32_t>(report.points_used));
-    s.map_updated(report.map_updated);
-    s.map_size(report.map_size);
-    s.latency_ms(latency_ms);
-    s.processing_ms(processing_ms);
-    s.scans_received(queue_.scans_received());
-    s.scans_skipped(queue_.scans_skipped());
-    s.scans_rejected(rejected_);
-    s.scans_accepted(poses_);
-    return s;
+    return geometry;
   }
 
   void print_summary() const {
     std::cerr << "slam_matcher: " << queue_.scans_received() << " scans received, "
               << queue_.scans_skipped() << " skipped (over " << max_scan_backlog_s_
-              << " s behind a newer one), " << poses_ << " poses published, " << rejected_
-              << " rejected, map " << slam_.map().size() << " points from " << keyframes_
-              << " keyframes\n";
-    if (odometry_) {
+              << " s behind a newer one), " << counts_.accepted << " poses published, "
+              << counts_.rejected << " rejected, map " << slam_.pipeline().map().size()
+              << " points from " << slam_.keyframes() << " keyframes\n";
+    if (const OdometryPrior* prior = slam_.odometry_prior()) {
       std::cerr << "slam_matcher: odometry prior: " << queue_.odometry_received()
-                << " odometry samples received, " << odometry_prior_.rejected()
-                << " dropped (non-finite or out of order), " << odometry_prior_.scans_with_prior()
-                << " scans matched with the prior, " << odometry_prior_.scans_without_prior()
+                << " odometry samples received, " << prior->rejected()
+                << " dropped (non-finite or out of order), " << prior->scans_with_prior()
+                << " scans matched with the prior, " << prior->scans_without_prior()
                 << " without (no odometry near the scan or the last posed scan)\n";
     }
   }
 
   std::string vehicle_;
-  bool geometry_from_scan_;
-  sim::Scenario scenario_;
-  SlamConfig config_;
-  std::shared_ptr<const ScanGeometry> geometry_;
-  dds::MessageScanGeometry message_geometry_;
-  SlamPipeline slam_;
+  io::SensorFile sensor_;
+  dds::MessageScanGeometry geometries_;
+  VehicleSlam slam_;
   matcher::ScanQueue queue_;
   double max_scan_backlog_s_;
-  OdometryPrior odometry_prior_;
   process::QosWatch qos_{"slam_matcher"};
   dds::Participant participant_;
   dds::Writer<msg::PoseWithCovarianceStampedPubSubType> pose_;
@@ -260,10 +195,8 @@ class MatcherNode {
   dds::Reader<msg::LaserScanPubSubType> scans_;
   std::unique_ptr<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>> odometry_;  // or none
   dds::Reader<msg::ImuPubSubType> imu_;
-  std::uint64_t poses_ = 0;
-  std::uint32_t keyframes_ = 0;
+  dds::MatcherCounts counts_;
   std::uint64_t statuses_ = 0;
-  std::uint64_t rejected_ = 0;
   bool layout_noted_ = false;
 };
 

@@ -11,12 +11,12 @@
 #include <variant>
 
 #include "SimulatedFlight.hpp"
-#include "core/Heading.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/MessageScanGeometry.hpp"
 #include "dds/RecordedMessageStream.hpp"
 #include "dds/SimulatedSensorMessages.hpp"
 #include "dds/Topics.hpp"
+#include "io/CarmenSamples.hpp"
 #include "io/CarmenScanStream.hpp"
 #include "io/FileError.hpp"
 #include "io/McapReader.hpp"
@@ -47,32 +47,6 @@ class StampRange {
   double last_ = -std::numeric_limits<double>::infinity();
 };
 
-// One geometry per distinct beam layout and laser mount (a log normally has one); a scan is
-// compared by its layout's parameters, so the beam directions are computed once per layout.
-class CarmenGeometries {
- public:
-  std::shared_ptr<const ScanGeometry> for_scan(const io::CarmenScan& scan) {
-    const Eigen::Isometry3d mount = io::laser_mount(scan);
-    if (!geometry_ || scan.ranges.size() != beams_ || scan.start_angle != start_ ||
-        scan.angle_increment != increment_ || scan.max_range != max_range_ ||
-        !mount.isApprox(geometry_->mount, 0.0)) {
-      geometry_ = std::make_shared<const ScanGeometry>(io::to_scan_geometry(scan));
-      beams_ = scan.ranges.size();
-      start_ = scan.start_angle;
-      increment_ = scan.angle_increment;
-      max_range_ = scan.max_range;
-    }
-    return geometry_;
-  }
-
- private:
-  std::shared_ptr<const ScanGeometry> geometry_;
-  std::size_t beams_ = 0;
-  double start_ = 0.0;
-  double increment_ = 0.0;
-  double max_range_ = 0.0;
-};
-
 class CarmenInput : public LogInput {
  public:
   CarmenInput(const std::string& path, HeadingJitter jitter)
@@ -95,18 +69,16 @@ class CarmenInput : public LogInput {
   void fill() {
     std::optional<io::TimedCarmenScan> timed = stream_.next();
     if (!timed) return;
-    const io::CarmenScan& carmen = timed->scan;
-    const io::CarmenPose2& robot = carmen.robot_pose;
-    stamps_.add(carmen.ipc_timestamp);
+    stamps_.add(timed->scan.ipc_timestamp);
+    io::CarmenSamples samples = sensor_.samples_of(*timed, jitter());
     LogEvent imu(LogEvent::Kind::Imu);
-    imu.imu = {timed->stamp, yaw_rotation(robot.theta + jitter()), Vec3::Zero(), Vec3::Zero()};
+    imu.imu = samples.orientation;
     LogEvent odometry(LogEvent::Kind::Odometry);
-    odometry.odometry = {timed->stamp, Vec3(robot.x, robot.y, 0.0)};
+    odometry.odometry = samples.odometry;
     LogEvent scan(LogEvent::Kind::Scan);
-    scan.scan = io::to_core_scan(carmen, geometries_.for_scan(carmen), timed->index);
-    scan.scan.stamp = timed->stamp;
-    scan.output_stamp = carmen.ipc_timestamp;
-    scan.start_hint = Vec3(robot.x, robot.y, 0.0);
+    scan.scan = std::move(samples.scan);
+    scan.output_stamp = timed->scan.ipc_timestamp;
+    scan.start_hint = samples.odometry.position;
     pending_.push_back(std::move(imu));
     pending_.push_back(std::move(odometry));
     pending_.push_back(std::move(scan));
@@ -121,7 +93,7 @@ class CarmenInput : public LogInput {
   std::size_t expected_;
   HeadingJitter jitter_;
   std::mt19937 random_;
-  CarmenGeometries geometries_;
+  io::CarmenSensor sensor_{io::CarmenBody::Robot};
   std::deque<LogEvent> pending_;
   StampRange stamps_;
 };

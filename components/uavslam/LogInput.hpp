@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "core/OdometryBuffer.hpp"
 #include "core/Types.hpp"
 
 namespace uavslam::cli {

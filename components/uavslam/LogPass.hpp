@@ -12,10 +12,10 @@
 #include "LogInput.hpp"
 #include "ProgressBar.hpp"
 #include "RunSummary.hpp"
-#include "core/DenseCloud.hpp"
-#include "core/OccupancyOctree.hpp"
 #include "core/SlamConfig.hpp"
 #include "eval/Relation.hpp"
+#include "maps/DenseCloud.hpp"
+#include "maps/OccupancyOctree.hpp"
 
 namespace uavslam::cli {
 

@@ -28,7 +28,7 @@
 #include "io/RelationsFile.hpp"
 #include "io/ScenarioFile.hpp"
 #include "io/TumFile.hpp"
-#include "sim/LidarGeometry.hpp"
+#include "sensor/LidarGeometry.hpp"
 #include "sim/World.hpp"
 
 namespace uavslam::cli {
@@ -53,8 +53,8 @@ struct OfflineOptions {
 // A 3D flight's keyframes, every point of each, map a place as often as the vehicle sees it: a
 // point within this distance of a map point is not added. On the demo flight the map shrank from
 // 269,000 to 152,000 points (the exact search's cost) and the dense pass matched better, ATE 0.033
-// -> 0.027 m (README "Offline dense mapping"). Not for CARMEN logs: on FR079 it cost the
-// point-to-line matcher its loop (0.031 -> 0.12 m over all relations).
+// -> 0.027 m (docs/recordings.md "Offline dense mapping"). Not for CARMEN logs: on FR079 it cost
+// the point-to-line matcher its loop (0.031 -> 0.12 m over all relations).
 constexpr double kFlightMapSpacing = 0.02;
 
 // The seed's offline variant of a configuration: every point of a scan is matched and every point
@@ -63,7 +63,7 @@ constexpr double kFlightMapSpacing = 0.02;
 SlamConfig offline_variant(SlamConfig config, std::optional<double> map_spacing) {
   config.scan.subsample_every = 1;
   config.map.subsample_every = 1;
-  config.nearest_neighbour.index = "exact";
+  config.nearest_neighbour.index = IndexKind::Exact;
   if (map_spacing) config.map.min_point_spacing = *map_spacing;
   return config;
 }
@@ -84,7 +84,7 @@ Input open_log_input(const OfflineOptions& o) {
   std::optional<sim::World> world;
   if (!o.sensor.empty()) {
     const sim::Scenario scenario = io::load_scenario(o.sensor);
-    geometry = sim::make_scan_geometry(scenario.lidar);
+    geometry = make_scan_geometry(scenario.lidar);
     world.emplace(scenario.world);
   }
   // Opened now, so a file it cannot map is refused before any output is made.

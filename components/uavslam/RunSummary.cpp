@@ -140,7 +140,7 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
                  {"max_error_after", config.icp.max_error_after},
                  {"max_error_ratio", config.icp.max_error_ratio},
                  {"max_correspondence_distance", config.icp.max_correspondence_distance},
-                 {"index", config.nearest_neighbour.index},
+                 {"index", std::string(mode_name(config.nearest_neighbour.index))},
                  {"flann_trees", config.nearest_neighbour.flann_trees},
                  {"flann_checks", config.nearest_neighbour.flann_checks},
                  {"keyframe_height", config.map.keyframe_height},

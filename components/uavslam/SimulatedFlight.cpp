@@ -16,6 +16,7 @@
 #include "dds/Topics.hpp"
 #include "io/McapWriter.hpp"
 #include "sim/FlightSimulator.hpp"
+#include "slam/VehicleSlam.hpp"
 
 namespace uavslam::cli {
 
@@ -85,7 +86,8 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
   SlamRun run;
   if (log.scans.empty()) return run;
   // The vehicle starts where the flight starts: the estimate and the truth share a frame.
-  SlamPipeline slam(config, log.ground_truth.front().position);
+  VehicleSlam slam(config);
+  slam.start_at(log.ground_truth.front().position);
   std::size_t next_imu = 0;
   const auto run_start = Clock::now();
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
@@ -98,9 +100,9 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
     for (; next_imu < log.imu.size() && log.imu[next_imu].stamp <= scan.stamp; ++next_imu) {
       slam.add_imu(log.imu[next_imu]);
     }
-    const auto start = Clock::now();
-    const ScanReport report = slam.process_scan(scan);
-    run.scan_seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    const VehicleScan result = slam.process_scan(scan);
+    const ScanReport& report = result.report;
+    run.scan_seconds.push_back(result.pipeline_seconds);
     ++run.scans_in;
     if (report.accepted()) {
       run.estimate.push_back(report.pose);
@@ -114,8 +116,8 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
     if (progress && i % 400 == 0) progress(i, log.scans.size());
   }
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
-  run.outcomes = slam.outcome_counts();
-  run.map = slam.map().points();
+  run.outcomes = slam.pipeline().outcome_counts();
+  run.map = slam.pipeline().map().points();
   if (progress) progress(run.scans_in, log.scans.size());
   return run;
 }

@@ -51,9 +51,9 @@ int run_sweep(const SweepOptions& o) {
       SlamConfig config = base;
       config.icp.iterations = iterations;
       if (checks == "exact") {
-        config.nearest_neighbour.index = "exact";
+        config.nearest_neighbour.index = IndexKind::Exact;
       } else {
-        config.nearest_neighbour.index = "flann";
+        config.nearest_neighbour.index = IndexKind::Flann;
         config.nearest_neighbour.flann_checks = std::stoi(checks);
       }
       const SlamRun run = run_slam(log, config);

@@ -1,22 +1,22 @@
 #include "core/NearestNeighbourIndex.hpp"
 
-#include <stdexcept>
-
-#include "core/BruteForceIndex.hpp"
-#include "core/ExactOctreeIndex.hpp"
-#include "core/FlannIndex.hpp"
+#include "core/nearest_neighbour/BruteForceIndex.hpp"
+#include "core/nearest_neighbour/ExactOctreeIndex.hpp"
+#include "core/nearest_neighbour/FlannIndex.hpp"
 
 namespace uavslam {
 
 std::unique_ptr<NearestNeighbourIndex> make_nearest_neighbour_index(
     const SlamConfig::NearestNeighbour& config) {
-  if (config.index == "flann") {
-    return std::make_unique<FlannIndex>(config.flann_trees, config.flann_checks);
+  switch (config.index) {
+    case IndexKind::Flann:
+      return std::make_unique<FlannIndex>(config.flann_trees, config.flann_checks);
+    case IndexKind::Exact:
+      return std::make_unique<ExactOctreeIndex>();
+    case IndexKind::Brute:
+      break;
   }
-  if (config.index == "exact") return std::make_unique<ExactOctreeIndex>();
-  if (config.index == "brute") return std::make_unique<BruteForceIndex>();
-  throw std::invalid_argument("unknown nearest-neighbour index '" + config.index +
-                              "' (expected flann, exact or brute)");
+  return std::make_unique<BruteForceIndex>();
 }
 
 }  // namespace uavslam

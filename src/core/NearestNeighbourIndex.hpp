@@ -42,7 +42,7 @@ class NearestNeighbourIndex {
   }
 };
 
-// "flann" (approximate kd-trees), "exact" (octree) or "brute" (every point; tests and benchmarks).
+// The index config.index names: approximate kd-trees, an exact octree, or every point (reference).
 std::unique_ptr<NearestNeighbourIndex> make_nearest_neighbour_index(
     const SlamConfig::NearestNeighbour& config);
 

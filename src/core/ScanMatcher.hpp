@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "core/Correspondences.hpp"
-#include "core/PlanarCorrection.hpp"
 #include "core/ScanOutcome.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/PlanarCorrection.hpp"
 
 namespace uavslam {
 

@@ -2,9 +2,73 @@
 // (thesis ch. 5.4.3). Loaded from YAML by io/SlamConfigFile; the core only reads it.
 #pragma once
 
-#include <string>
+#include <array>
+#include <string_view>
+#include <utility>
 
 namespace uavslam {
+
+// Where the ICP starts (icp.motion_prior).
+enum class MotionPrior {
+  None,      // the last position: the seed, which has no motion model
+  Odometry,  // the last position plus the odometry's motion since the previous posed scan
+};
+
+// Where the heading comes from (icp.heading).
+enum class HeadingMode {
+  Source,         // the orientation source's yaw as it is (the seed)
+  PeriodicCheck,  // the ICP also estimates yaw now and then and before keyframes (the seed's 5.6)
+  EveryScan,      // the ICP estimates yaw with the translation in every scan
+};
+
+// The distance the ICP minimises (icp.metric).
+enum class IcpMetric {
+  PointToPoint,  // the seed, eq. 5.18
+  PointToLine,   // to the wall through the map point, along its horizontal normal
+};
+
+// The nearest-neighbour search (nearest_neighbour.index).
+enum class IndexKind {
+  Exact,  // octree, exact answers
+  Flann,  // the seed's approximate randomised kd-trees
+  Brute,  // every point (reference)
+};
+
+// Each mode's spelling in the YAML file and on the command line, in one table per mode:
+// io/SlamConfigFile parses with it and refuses any other word, naming these.
+template <typename Mode>
+struct ModeNames;
+template <>
+struct ModeNames<MotionPrior> {
+  static constexpr std::array<std::pair<std::string_view, MotionPrior>, 2> all{
+      {{"none", MotionPrior::None}, {"odometry", MotionPrior::Odometry}}};
+};
+template <>
+struct ModeNames<HeadingMode> {
+  static constexpr std::array<std::pair<std::string_view, HeadingMode>, 3> all{
+      {{"source", HeadingMode::Source},
+       {"periodic_check", HeadingMode::PeriodicCheck},
+       {"every_scan", HeadingMode::EveryScan}}};
+};
+template <>
+struct ModeNames<IcpMetric> {
+  static constexpr std::array<std::pair<std::string_view, IcpMetric>, 2> all{
+      {{"point_to_point", IcpMetric::PointToPoint}, {"point_to_line", IcpMetric::PointToLine}}};
+};
+template <>
+struct ModeNames<IndexKind> {
+  static constexpr std::array<std::pair<std::string_view, IndexKind>, 3> all{
+      {{"flann", IndexKind::Flann}, {"exact", IndexKind::Exact}, {"brute", IndexKind::Brute}}};
+};
+
+// The name of a mode as the YAML file spells it.
+template <typename Mode>
+constexpr std::string_view mode_name(Mode mode) {
+  for (const auto& [name, value] : ModeNames<Mode>::all) {
+    if (value == mode) return name;
+  }
+  return "?";
+}
 
 struct SlamConfig {
   // Step 1-2: which points of a scan take part.
@@ -22,24 +86,19 @@ struct SlamConfig {
     // Per-axis weights of eq. 5.17: level beams inform x-y, floor/ceiling beams z (a planar scan
     // sees height only through beams a mirror deflects). false: every pair informs every axis.
     bool split_axes = true;
-    // Where the ICP starts: "none" = the last position (the seed: no motion model) | "odometry" =
-    // the last position plus the odometry's motion since the previous scan. The caller that owns
-    // the odometry supplies the motion (SlamPipeline::process_scan); the core only adds it.
-    std::string motion_prior = "none";
-    // Where the heading comes from (beyond the seed, which trusts the orientation source):
-    // "source" = the orientation source's yaw as it is (the seed) | "periodic_check" = every
-    // heading_check_every scans, and before each keyframe, the ICP also estimates yaw and
-    // corrects the heading when it disagrees by more than heading_check_tolerance (the seed's
-    // own suggestion, 5.6) |
-    // "every_scan" = the ICP estimates yaw with the translation in every scan.
-    std::string heading = "source";
+    // Where the ICP starts. The caller that owns the odometry supplies the motion
+    // (slam/VehicleSlam); the core only adds it (SlamPipeline::process_scan).
+    MotionPrior motion_prior = MotionPrior::None;
+    // Where the heading comes from (beyond the seed, which trusts the orientation source). With
+    // PeriodicCheck, every heading_check_every scans and before each keyframe the ICP also
+    // estimates yaw and corrects the heading when it disagrees by more than
+    // heading_check_tolerance.
+    HeadingMode heading = HeadingMode::Source;
     int heading_check_every = 10;           // scans between periodic checks
     double heading_check_tolerance = 0.01;  // rad; a smaller disagreement leaves the heading alone
     double max_rotation = 0.35;  // rad; a larger yaw correction in one scan discards the scan
-    // The distance the ICP minimises: "point_to_point" (the seed, eq. 5.18) | "point_to_line" (to
-    // the wall through the map point, along its horizontal normal; no bias from the map's point
-    // spacing).
-    std::string metric = "point_to_point";
+    // The distance the ICP minimises; point-to-line has no bias from the map's point spacing.
+    IcpMetric metric = IcpMetric::PointToPoint;
     // How firmly the rotation-aware or point-to-line ICP holds its predicted start, as a fraction
     // of the information the scan gives (PlanarCorrection): what the scan cannot see stays as
     // predicted. The seed's translation-only step has no such term.
@@ -55,9 +114,8 @@ struct SlamConfig {
 
   // The nearest-neighbour search: FLANN approximate kd-trees (real time) or exact (reference).
   struct NearestNeighbour {
-    // "exact" (octree; measured 15x faster than FLANN's kd-trees here, README) | "flann" (the
-    // seed's approximate search) | "brute" (reference)
-    std::string index = "exact";
+    // Exact: measured 15x faster than FLANN's kd-trees here (docs/speed.md).
+    IndexKind index = IndexKind::Exact;
     int flann_trees = 4;    // randomised kd-trees
     int flann_checks = 32;  // leaves visited per query: the accuracy/speed knob
   } nearest_neighbour;

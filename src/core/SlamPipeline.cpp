@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "core/Heading.hpp"
-#include "core/Relocalisation.hpp"
-#include "core/SurfaceNormals.hpp"
+#include "core/extensions/Relocalisation.hpp"
+#include "core/extensions/SurfaceNormals.hpp"
 
 namespace uavslam {
 namespace {
@@ -83,7 +83,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
                        search_starts(start.position,
                                      search_radius(config_.recovery, scan.stamp - pose_.stamp),
                                      config_.recovery.grid_step),
-                       config_.icp.heading == "every_scan")
+                       config_.icp.heading == HeadingMode::EveryScan)
           : this->match(points, start);
   report.outcome = match.outcome;
   report.error_before = match.error_before;
@@ -117,10 +117,11 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
 // map with the source's heading error would turn the map itself). A check that finds the heading
 // within tolerance leaves it alone and takes the seed's translation-only result.
 MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted) {
-  const std::string& heading = config_.icp.heading;
+  const HeadingMode heading = config_.icp.heading;
   const Vec3& start = predicted.position;
-  if (heading == "every_scan") return matcher_.match(map_, points, start, true, &nearest_);
-  if (heading == "periodic_check" && heading_check_due(predicted)) {
+  if (heading == HeadingMode::EveryScan)
+    return matcher_.match(map_, points, start, true, &nearest_);
+  if (heading == HeadingMode::PeriodicCheck && heading_check_due(predicted)) {
     scans_since_heading_check_ = 0;
     MatchResult checked = matcher_.match(map_, points, start, true, &nearest_);
     if (checked.outcome == ScanOutcome::Accepted &&
@@ -171,7 +172,7 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
   Points aligned = keep_every_kth(projected.points, k);
   apply_transform(aligned, pose_.position);
   std::vector<Vec3> normals;
-  if (config_.icp.metric == "point_to_line") {
+  if (config_.icp.metric == IcpMetric::PointToLine) {
     normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
   }
   report.added_points = map_.add_points(aligned, normals);

@@ -43,6 +43,10 @@ class SlamPipeline {
   // initial_position: where the body is when the first scan arrives (e.g. the take-off point).
   explicit SlamPipeline(const SlamConfig& config, const Vec3& initial_position = Vec3::Zero());
 
+  // Where the body is at the first scan, when known only after construction (a log's first
+  // scan); before the first scan.
+  void start_at(const Vec3& position) { pose_.position = position; }
+
   void add_imu(const ImuSample& sample);
   // predicted_motion: the body's translation since the previous scan as another source predicts
   // it (e.g. wheel odometry), in the frame of the orientation source; the ICP starts from the last

@@ -36,6 +36,12 @@ struct ImuSample {
   Vec3 linear_acceleration = Vec3::Zero();  // m/s^2, body frame, gravity included (specific force)
 };
 
+// One position of a second motion source (wheel odometry), the motion prior's input.
+struct OdometrySample {
+  double stamp = 0.0;            // s
+  Vec3 position = Vec3::Zero();  // m, in the odometry's own frame
+};
+
 // The fixed geometry of a range sensor: where each beam points, which ranges are valid and where
 // the sensor sits on the body. A planar scanner, one with beams deflected by a mirror and a
 // multi-ring scanner all reduce to a list of beam directions.

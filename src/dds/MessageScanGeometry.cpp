@@ -1,14 +1,27 @@
 #include "dds/MessageScanGeometry.hpp"
 
+#include "sensor/LidarGeometry.hpp"
+
 namespace uavslam::dds {
+
+MessageScanGeometry::MessageScanGeometry(const LidarSpec& lidar)
+    : lidar_(lidar), sensor_(make_scan_geometry(lidar)) {}
 
 std::shared_ptr<const ScanGeometry> MessageScanGeometry::for_message(
     const msg::LaserScan& message) {
+  if (sensor_ && (message.ranges().size() == sensor_->directions.size() || lidar_->rings > 1)) {
+    return sensor_;
+  }
+  own_layout_used_ = own_layout_used_ || sensor_;
+  return layout_of(message);
+}
+
+std::shared_ptr<const ScanGeometry> MessageScanGeometry::layout_of(const msg::LaserScan& message) {
   const std::size_t beams = message.ranges().size();
-  if (geometry_ && beams == beams_ && message.angle_min() == angle_min_ &&
+  if (layout_ && beams == beams_ && message.angle_min() == angle_min_ &&
       message.angle_increment() == angle_increment_ && message.range_min() == range_min_ &&
       message.range_max() == range_max_) {
-    return geometry_;
+    return layout_;
   }
   beams_ = beams;
   angle_min_ = message.angle_min();
@@ -16,12 +29,13 @@ std::shared_ptr<const ScanGeometry> MessageScanGeometry::for_message(
   range_min_ = message.range_min();
   range_max_ = message.range_max();
   const int count = static_cast<int>(beams);
-  ScanGeometry geometry = place_ ? place_(angle_min_, angle_increment_, count)
-                                 : ScanGeometry::planar(angle_min_, angle_increment_, count);
+  ScanGeometry geometry = lidar_
+                              ? planar_scan_geometry(*lidar_, angle_min_, angle_increment_, count)
+                              : ScanGeometry::planar(angle_min_, angle_increment_, count);
   geometry.min_range = range_min_;
   geometry.max_range = range_max_;
-  geometry_ = std::make_shared<const ScanGeometry>(std::move(geometry));
-  return geometry_;
+  layout_ = std::make_shared<const ScanGeometry>(std::move(geometry));
+  return layout_;
 }
 
 }  // namespace uavslam::dds

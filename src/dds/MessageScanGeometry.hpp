@@ -1,36 +1,45 @@
-// The beam layout a scan message carries (angle_min, angle_increment, range_min, range_max, the
-// number of ranges), as the core's geometry: a planar scanner at the body origin. For receivers
-// that know nothing of the sensor but what each scan says, such as a replayed 2D laser log
-// (lidar_driver --source carmen:FILE), where the scanner's frame is the robot's odometry frame.
-// Or, given how to place a layout on the vehicle (a sensor's mount and floor mirror), that: a
-// real sensor whose scans have another beam count than its configuration.
+// The core geometry a scan message's ranges belong to.
+//   - Without a sensor description: the beam layout the message carries (angle_min,
+//     angle_increment, range_min, range_max, the number of ranges) as a planar scanner at the body
+//     origin. For receivers that know nothing of the sensor but what each scan says, such as a
+//     replayed 2D laser log (lidar_driver --source carmen:FILE), where the laser is the body.
+//   - With one (a sensor file's `lidar`): the sensor's geometry (mount, floor mirror, rings). A
+//     planar scan with another beam count keeps its own layout, placed on the vehicle as the
+//     description says: a real UTM-30LX sends 1081 steps where the simulated one has 1080.
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <memory>
+#include <optional>
 
 #include <msg/LaserScan.h>
 
 #include "core/Types.hpp"
+#include "sensor/LidarSpec.hpp"
 
 namespace uavslam::dds {
 
 class MessageScanGeometry {
  public:
-  // Beam i at angle_min + i * angle_increment as a geometry (its ranges are set from the message).
-  using Place = std::function<ScanGeometry(double angle_min, double angle_increment, int beams)>;
-
   // A planar scanner at the body origin.
   MessageScanGeometry() = default;
-  explicit MessageScanGeometry(Place place) : place_(std::move(place)) {}
+  explicit MessageScanGeometry(const LidarSpec& lidar);
 
-  // The geometry of this message's layout; the same object while the layout does not change.
+  // The geometry of this message; the same object while the layout does not change.
   std::shared_ptr<const ScanGeometry> for_message(const msg::LaserScan& message);
 
+  // The sensor description's own geometry (null without one).
+  const std::shared_ptr<const ScanGeometry>& sensor_geometry() const { return sensor_; }
+  // A message's layout differed from the sensor description's, and its own was used.
+  bool own_layout_used() const { return own_layout_used_; }
+
  private:
-  Place place_;
-  std::shared_ptr<const ScanGeometry> geometry_;
+  std::shared_ptr<const ScanGeometry> layout_of(const msg::LaserScan& message);
+
+  std::optional<LidarSpec> lidar_;
+  std::shared_ptr<const ScanGeometry> sensor_;
+  bool own_layout_used_ = false;
+  std::shared_ptr<const ScanGeometry> layout_;
   std::size_t beams_ = 0;
   float angle_min_ = 0.0f;
   float angle_increment_ = 0.0f;

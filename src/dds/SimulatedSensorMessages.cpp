@@ -1,13 +1,13 @@
 #include "dds/SimulatedSensorMessages.hpp"
 
+#include "core/Angles.hpp"
 #include "dds/Conversions.hpp"
-#include "sim/Angles.hpp"
 
 namespace uavslam::dds {
 
-msg::LaserScan simulated_scan_message(const Scan& scan, const sim::LidarSpec& lidar,
+msg::LaserScan simulated_scan_message(const Scan& scan, const LidarSpec& lidar,
                                       const std::string& vehicle) {
-  const double fov = sim::deg_to_rad(lidar.fov_deg);
+  const double fov = deg_to_rad(lidar.fov_deg);
   const double increment = fov / (lidar.beams - 1);
   return to_msg(scan, -fov / 2.0, increment, Source{"laser", vehicle});
 }

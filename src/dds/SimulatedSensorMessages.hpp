@@ -13,14 +13,14 @@
 #include <msg/Pose.h>
 
 #include "core/Types.hpp"
-#include "sim/Scenario.hpp"
+#include "sensor/LidarSpec.hpp"
 
 namespace uavslam::dds {
 
 // The recording channel of the true body pose at each scan (PoseWithCovarianceStamped).
 inline constexpr char kGroundTruthTopic[] = "ground_truth";
 
-msg::LaserScan simulated_scan_message(const Scan& scan, const sim::LidarSpec& lidar,
+msg::LaserScan simulated_scan_message(const Scan& scan, const LidarSpec& lidar,
                                       const std::string& vehicle);
 msg::Imu simulated_imu_message(const ImuSample& sample, std::uint64_t seq,
                                const std::string& vehicle);

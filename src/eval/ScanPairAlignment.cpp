@@ -5,8 +5,8 @@
 #include "core/Heading.hpp"
 #include "core/ScanMatcher.hpp"
 #include "core/ScanProjection.hpp"
-#include "core/SurfaceNormals.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/SurfaceNormals.hpp"
 
 namespace uavslam::eval {
 namespace {
@@ -18,7 +18,7 @@ WorldMap map_of(const Scan& scan, const SlamConfig& config) {
   const ProjectedScan projected = project_scan(scan, Eigen::Quaterniond::Identity());
   const int k = config.map.subsample_every;
   std::vector<Vec3> normals;
-  if (config.icp.metric == "point_to_line") {
+  if (config.icp.metric == IcpMetric::PointToLine) {
     normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
   }
   map.add_points(keep_every_kth(projected.points, k), normals);
@@ -39,9 +39,9 @@ ScanPairAlignment align_scan_pair(const Scan& first, const Scan& second, const R
       weigh_points(keep_every_kth(projected.points, k), keep_every_kth(projected.vertical, k),
                    config.icp.split_axes);
   if (map.empty() || points.points.empty()) return alignment;
-  const MatchResult match =
-      ScanMatcher(config.icp)
-          .match(map, points, Vec3(relation.x, relation.y, 0.0), config.icp.heading != "source");
+  const MatchResult match = ScanMatcher(config.icp)
+                                .match(map, points, Vec3(relation.x, relation.y, 0.0),
+                                       config.icp.heading != HeadingMode::Source);
   alignment.outcome = match.outcome;
   alignment.iterations = match.iterations;
   if (match.outcome != ScanOutcome::Accepted) return alignment;

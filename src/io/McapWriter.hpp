@@ -28,7 +28,7 @@ struct McapWriterOptions {
   std::size_t chunk_size = 1024 * 1024;
   // How each chunk's records are compressed. kNone by default: on the demo flight's recording
   // zstd saves a third of the size (lz4 a quarter) for little CPU, a gain that does not yet
-  // justify changing what every existing recording looks like (README "Recording").
+  // justify changing what every existing recording looks like (docs/recordings.md).
   McapCompression compression = McapCompression::kNone;
   // flush() also waits until the OS has the data on the storage device (fdatasync), so that
   // a power cut loses nothing flushed. close() always does.

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/DenseCloud.hpp"
 #include "io/FileError.hpp"
+#include "maps/DenseCloud.hpp"
 
 namespace uavslam::io {
 

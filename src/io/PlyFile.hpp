@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "core/DenseCloud.hpp"
 #include "core/Types.hpp"
 #include "io/FileError.hpp"
+#include "maps/DenseCloud.hpp"
 
 namespace uavslam::io {
 

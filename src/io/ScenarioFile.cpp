@@ -86,9 +86,9 @@ std::vector<sim::Waypoint> read_waypoints(const YamlReader& reader, const sim::W
   return waypoints;
 }
 
-sim::FloorMirrorSpec read_floor_mirror(const YamlReader& reader, int beams) {
+FloorMirrorSpec read_floor_mirror(const YamlReader& reader, int beams) {
   reader.expect_keys_only({"beams", "spread_deg"});
-  sim::FloorMirrorSpec mirror;
+  FloorMirrorSpec mirror;
   mirror.beams =
       reader.get_int_or("beams", mirror.beams, NumberRange::between(0, static_cast<double>(beams)));
   mirror.spread_deg =
@@ -96,17 +96,17 @@ sim::FloorMirrorSpec read_floor_mirror(const YamlReader& reader, int beams) {
   return mirror;
 }
 
-void read_mount(const YamlReader& reader, sim::LidarSpec& lidar) {
+void read_mount(const YamlReader& reader, LidarSpec& lidar) {
   reader.expect_keys_only({"position", "rpy_deg"});
   lidar.mount_position = reader.get_vec3_or("position", lidar.mount_position);
   lidar.mount_rpy_deg = reader.get_vec3_or("rpy_deg", lidar.mount_rpy_deg);
 }
 
-sim::LidarSpec read_lidar(const YamlReader& reader) {
+LidarSpec read_lidar(const YamlReader& reader) {
   reader.expect_keys_only({"beams", "fov_deg", "rate_hz", "min_range", "max_range",
                            "range_noise_std", "mount", "floor_mirror", "rings",
                            "vertical_fov_deg"});
-  sim::LidarSpec lidar;
+  LidarSpec lidar;
   lidar.beams = reader.get_int_or("beams", lidar.beams, NumberRange::at_least(1));
   lidar.fov_deg = reader.get_double_or("fov_deg", lidar.fov_deg, {0.0, 360.0, true});
   lidar.rate_hz = reader.get_double_or("rate_hz", lidar.rate_hz, NumberRange::positive());
@@ -156,14 +156,17 @@ sim::Scenario load_scenario(const std::string& path) {
   return scenario;
 }
 
-sim::Scenario load_sensor(const std::string& path) {
+SensorFile load_sensor(const std::string& path) {
   const YamlReader root = YamlReader::from_file(path, "sensor");
-  if (root.find("world")) return load_scenario(path);
+  if (root.find("world")) {
+    const sim::Scenario scenario = load_scenario(path);
+    return {{scenario.name, scenario.lidar}, scenario.waypoints.front().position};
+  }
   root.expect_keys_only({"name", "lidar"});
-  sim::Scenario sensor;
-  sensor.name = root.get_string_or("name", std::filesystem::path(path).stem().string());
-  sensor.lidar = read_lidar(root.at("lidar"));
-  return sensor;
+  SensorFile file;
+  file.sensor.name = root.get_string_or("name", std::filesystem::path(path).stem().string());
+  file.sensor.lidar = read_lidar(root.at("lidar"));
+  return file;
 }
 
 }  // namespace uavslam::io

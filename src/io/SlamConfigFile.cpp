@@ -8,6 +8,19 @@ namespace uavslam::io {
 
 namespace {
 
+// A mode's value: one of the names of its table (core/SlamConfig.hpp), any other word refused
+// with those names.
+template <typename Mode>
+Mode as_mode(const YamlReader& value) {
+  std::vector<std::string> names;
+  for (const auto& [name, mode] : ModeNames<Mode>::all) names.emplace_back(name);
+  const std::string chosen = value.as_choice(names);
+  for (const auto& [name, mode] : ModeNames<Mode>::all) {
+    if (name == chosen) return mode;
+  }
+  return ModeNames<Mode>::all.front().second;  // not reached: as_choice refused it
+}
+
 // One settable parameter: where it lives in the file and how its value is checked and stored.
 // The file loader and the command-line override share this table, so they cannot disagree.
 struct Parameter {
@@ -47,13 +60,9 @@ const std::vector<Parameter>& parameters() {
       {"icp", "split_axes",
        [](SlamConfig& c, const YamlReader& v) { c.icp.split_axes = v.as_bool(); }},
       {"icp", "motion_prior",
-       [](SlamConfig& c, const YamlReader& v) {
-         c.icp.motion_prior = v.as_choice({"none", "odometry"});
-       }},
+       [](SlamConfig& c, const YamlReader& v) { c.icp.motion_prior = as_mode<MotionPrior>(v); }},
       {"icp", "heading",
-       [](SlamConfig& c, const YamlReader& v) {
-         c.icp.heading = v.as_choice({"source", "periodic_check", "every_scan"});
-       }},
+       [](SlamConfig& c, const YamlReader& v) { c.icp.heading = as_mode<HeadingMode>(v); }},
       {"icp", "heading_check_every",
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.heading_check_every = v.as_int(NumberRange::at_least(1));
@@ -67,9 +76,7 @@ const std::vector<Parameter>& parameters() {
          c.icp.max_rotation = v.as_double(NumberRange::non_negative());
        }},
       {"icp", "metric",
-       [](SlamConfig& c, const YamlReader& v) {
-         c.icp.metric = v.as_choice({"point_to_point", "point_to_line"});
-       }},
+       [](SlamConfig& c, const YamlReader& v) { c.icp.metric = as_mode<IcpMetric>(v); }},
       {"icp", "prior_weight",
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.prior_weight = v.as_double(NumberRange::non_negative());
@@ -88,7 +95,7 @@ const std::vector<Parameter>& parameters() {
        }},
       {"nearest_neighbour", "index",
        [](SlamConfig& c, const YamlReader& v) {
-         c.nearest_neighbour.index = v.as_choice({"flann", "exact", "brute"});
+         c.nearest_neighbour.index = as_mode<IndexKind>(v);
        }},
       {"nearest_neighbour", "flann_trees",
        [](SlamConfig& c, const YamlReader& v) {

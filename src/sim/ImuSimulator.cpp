@@ -1,6 +1,6 @@
 #include "sim/ImuSimulator.hpp"
 
-#include "sim/Angles.hpp"
+#include "core/Angles.hpp"
 #include "sim/SeedMixing.hpp"
 
 namespace uavslam::sim {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "sim/LidarGeometry.hpp"
+#include "sensor/LidarGeometry.hpp"
 #include "sim/SeedMixing.hpp"
 
 namespace uavslam::sim {

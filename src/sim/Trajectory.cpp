@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "sim/Angles.hpp"
+#include "core/Angles.hpp"
 
 namespace uavslam::sim {
 

@@ -24,6 +24,7 @@
 #include "common/NodeOptions.hpp"
 #include "common/RealTimePacer.hpp"
 #include "common/StopRequest.hpp"
+#include "core/Angles.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Profiles.hpp"
@@ -32,7 +33,6 @@
 #include "dds/Writer.hpp"
 #include "eval/Percentile.hpp"
 #include "io/ScenarioFile.hpp"
-#include "sim/Angles.hpp"
 #include "sim/FlightSimulator.hpp"
 
 namespace uavslam {
@@ -110,7 +110,7 @@ void print(const char* what, const eval::SampleStats& s) {
 std::uint64_t fly(sim::FlightSimulator& simulator, const sim::Scenario& scenario, double duration,
                   dds::Writer<msg::LaserScanPubSubType>& scans,
                   dds::Writer<msg::ImuPubSubType>& imu, LatencyLog& log) {
-  const double fov = sim::deg_to_rad(scenario.lidar.fov_deg);
+  const double fov = deg_to_rad(scenario.lidar.fov_deg);
   const double increment = fov / (scenario.lidar.beams - 1);
   const double end = duration > 0 ? simulator.start_time() + duration : simulator.end_time();
   process::RealTimePacer pacer(1.0);

@@ -22,13 +22,13 @@
 #include <utility>
 #include <vector>
 
-#include "core/BruteForceIndex.hpp"
 #include "core/NearestNeighbourIndex.hpp"
 #include "core/ScanMatcher.hpp"
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/Types.hpp"
 #include "core/WorldMap.hpp"
+#include "core/nearest_neighbour/BruteForceIndex.hpp"
 #include "io/ScenarioFile.hpp"
 #include "sim/FlightSimulator.hpp"
 #include "sim/SampleClock.hpp"
@@ -200,7 +200,7 @@ const std::vector<Points>& extra_keyframes() {
 // The nearest-neighbour index a benchmark runs on.
 struct IndexSpec {
   std::string name;   // as it appears in the benchmark name
-  std::string kind;   // make_nearest_neighbour_index: flann | exact | brute
+  IndexKind kind;     // make_nearest_neighbour_index
   int checks = 32;    // flann only
   bool bulk = false;  // the whole map in one add_points, not keyframe by keyframe
 };
@@ -366,11 +366,11 @@ void BM_AddKeyframe(benchmark::State& state, const IndexSpec& spec, std::size_t 
 std::vector<IndexSpec> nearest_neighbour_specs() {
   std::vector<IndexSpec> specs;
   for (int checks : {1, 4, 8, 16, 32, 64, 128, 256}) {
-    specs.push_back({"flann_c" + std::to_string(checks), "flann", checks, false});
+    specs.push_back({"flann_c" + std::to_string(checks), IndexKind::Flann, checks, false});
   }
-  specs.push_back({"flann_c32_bulk", "flann", 32, true});
-  specs.push_back({"exact", "exact", 32, false});
-  specs.push_back({"brute", "brute", 32, true});
+  specs.push_back({"flann_c32_bulk", IndexKind::Flann, 32, true});
+  specs.push_back({"exact", IndexKind::Exact, 32, false});
+  specs.push_back({"brute", IndexKind::Brute, 32, true});
   return specs;
 }
 
@@ -388,7 +388,7 @@ void register_benchmarks() {
           [spec, size](benchmark::State& state) { BM_NearestNeighbour(state, spec, size); });
       nn->Unit(benchmark::kMicrosecond);
       // Brute force over 1M points takes ~0.3 s a search: a few suffice.
-      if (spec.kind == "brute" && size >= 1000000) nn->Iterations(3);
+      if (spec.kind == IndexKind::Brute && size >= 1000000) nn->Iterations(3);
       if (!is_matcher_spec(spec)) continue;
       for (int scan_points : {216, 1080}) {
         const std::string name = "BM_MatchScan/" + spec.name + "/" + std::to_string(scan_points) +
@@ -401,8 +401,8 @@ void register_benchmarks() {
       }
     }
   }
-  for (const IndexSpec& spec :
-       {IndexSpec{"flann_c32", "flann", 32, false}, IndexSpec{"exact", "exact", 32, false}}) {
+  for (const IndexSpec& spec : {IndexSpec{"flann_c32", IndexKind::Flann, 32, false},
+                                IndexSpec{"exact", IndexKind::Exact, 32, false}}) {
     benchmark::RegisterBenchmark(
         ("BM_AddKeyframe/" + key_of(spec, kAddKeyframeMap)).c_str(),
         [spec](benchmark::State& state) { BM_AddKeyframe(state, spec, kAddKeyframeMap); })

@@ -3,7 +3,7 @@
 // per chunk compression, and prints a Markdown table of file size, write time and read time
 // (McapStreamReader and McapIndexedReader over every message), each the best of three runs. The
 // files are written without fdatasync: the table measures the CPU cost of compression, not the
-// disk. Not a test; README "Recording" shows its output for the demo flight.
+// disk. Not a test; docs/recordings.md shows its output for the demo flight.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

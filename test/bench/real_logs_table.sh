@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Freiburg benchmark table of README "Real logs": the three heading modes on both logs, each
+# The Freiburg benchmark table of docs/real-logs.md: the three heading modes on both logs, each
 # run once as it is and then under tiny heading perturbations (--heading-jitter), so a figure comes
 # with its spread (the data README: matchers on these logs can be chaotic).
 #

@@ -1,7 +1,7 @@
-// `cmake --install` gives a tree a vehicle runs from (README "On the vehicle"): the processes in
-// bin/, the QoS profiles in qos/ (found there without $UAVSLAM_QOS_FILE), the configuration,
-// launch files and systemd units in config/; and the installed launcher runs the installed
-// processes.
+// `cmake --install` gives a tree a vehicle runs from (docs/deployment.md "On the vehicle"): the
+// processes in bin/, the QoS profiles in qos/ (found there without $UAVSLAM_QOS_FILE), the
+// configuration, launch files and systemd units in config/; and the installed launcher runs the
+// installed processes.
 #include <cstdlib>
 #include <filesystem>
 #include <string>

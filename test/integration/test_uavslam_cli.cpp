@@ -339,7 +339,7 @@ TEST_F(UavslamCli, EvalScansScoresTheRelationsAgainstTheScansOwnAlignment) {
 // The smaller Freiburg log end to end with the shipped config: the run completes, most scans are
 // matched, every relation finds its poses, and estimating yaw in every scan beats the odometry it
 // starts from by far (odometry alone: 6.5 m / 0.059 m / 2.4 deg). The bounds leave room for the
-// spread the README reports under tiny perturbations (0.03-0.18 m over all relations).
+// spread docs/real-logs.md reports under tiny perturbations (0.03-0.18 m over all relations).
 TEST_F(UavslamCli, RunCoversTheFr079Log) {
   const fs::path data = fs::path(UAVSLAM_SOURCE_DIR) / ".." / "shared" / "data" / "freiburg";
   if (!fs::exists(data / "fr079.clf")) GTEST_SKIP() << "no Freiburg data at " << data;

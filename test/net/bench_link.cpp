@@ -1,5 +1,5 @@
-// bench_link: the figures of README "Two hosts over WiFi" (`make bench-link`, needs root). Four
-// real-time flights of the demo scenario with the real processes: all on this host over
+// bench_link: the figures of docs/deployment.md "Two hosts over WiFi" (`make bench-link`, needs
+// root). Four real-time flights of the demo scenario with the real processes: all on this host over
 // loopback (the reference), then across the emulated link (default 20 ms one way, 5 % loss each
 // way, 20 Mbit/s) with the matcher on board, with the matcher on the ground, and with the matcher
 // on the ground through a 2 s outage. Prints a markdown table and writes results.json.

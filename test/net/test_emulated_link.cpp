@@ -1,6 +1,6 @@
 // The emulated WiFi link between the "uav" and "gcs" namespaces, measured with real UDP packets:
 // delay, loss, rate, outage and teardown. Needs root (skips with the reason otherwise). The
-// figures are printed for the README; the bands are wide for a noisy 2-core machine.
+// figures are printed for docs/deployment.md; the bands are wide for a noisy 2-core machine.
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <poll.h>

@@ -38,8 +38,8 @@ constexpr double kDatagramHeaders = 200.0;
 // frame "laser", vehicle "uav1", no intensities.
 std::size_t serialized_scan_bytes() {
   Scan scan;
-  scan.ranges.assign(sim::LidarSpec{}.beams, 5.0f);
-  msg::LaserScan message = dds::simulated_scan_message(scan, sim::LidarSpec{}, "uav1");
+  scan.ranges.assign(LidarSpec{}.beams, 5.0f);
+  msg::LaserScan message = dds::simulated_scan_message(scan, LidarSpec{}, "uav1");
   msg::LaserScanPubSubType type;
   return type.getSerializedSizeProvider(&message)();
 }

@@ -10,8 +10,8 @@ namespace uavslam::mavlink {
 
 class SerialLink : public ByteLink {
  public:
-  // Throws std::system_error naming the device (missing, no permission: see the README's dialout
-  // note) or std::invalid_argument for a baud rate termios does not have.
+  // Throws std::system_error naming the device (missing, no permission: see docs/devices.md's
+  // dialout note) or std::invalid_argument for a baud rate termios does not have.
   SerialLink(const std::string& device, int baud);
   ~SerialLink() override;
   SerialLink(const SerialLink&) = delete;

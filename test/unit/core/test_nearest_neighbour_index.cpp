@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/BruteForceIndex.hpp"
-#include "core/ExactOctreeIndex.hpp"
-#include "core/FlannIndex.hpp"
+#include "core/nearest_neighbour/BruteForceIndex.hpp"
+#include "core/nearest_neighbour/ExactOctreeIndex.hpp"
+#include "core/nearest_neighbour/FlannIndex.hpp"
 
 namespace uavslam {
 namespace {
@@ -160,12 +160,6 @@ TEST(FlannIndex, EmptyIndexAnswersWithoutCrashing) {
   flann.find_nearest({Vec3::Zero()}, nearest);
   EXPECT_EQ(nearest.size(), 1u);
   EXPECT_EQ(flann.size(), 0u);
-}
-
-TEST(NearestNeighbourIndex, FactoryRejectsAnUnknownName) {
-  SlamConfig::NearestNeighbour config;
-  config.index = "kdtree";
-  EXPECT_THROW(make_nearest_neighbour_index(config), std::invalid_argument);
 }
 
 }  // namespace

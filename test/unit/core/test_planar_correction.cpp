@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/PlanarCorrection.hpp"
-#include "core/SurfaceNormals.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/PlanarCorrection.hpp"
+#include "core/extensions/SurfaceNormals.hpp"
 
 namespace uavslam {
 namespace {
@@ -129,7 +129,7 @@ TEST(SurfaceNormals, AGapOrAVerticalBeamLeavesNoNormal) {
 
 WorldMap exact_map(double min_spacing) {
   SlamConfig::NearestNeighbour nn;
-  nn.index = "exact";
+  nn.index = IndexKind::Exact;
   return WorldMap(make_nearest_neighbour_index(nn), min_spacing);
 }
 

@@ -9,7 +9,7 @@ namespace {
 
 WorldMap exact_map(const Points& points) {
   SlamConfig::NearestNeighbour nn;
-  nn.index = "exact";
+  nn.index = IndexKind::Exact;
   WorldMap map(make_nearest_neighbour_index(nn));
   map.add_points(points);
   return map;

@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "SyntheticRoom.hpp"
-#include "core/Relocalisation.hpp"
 #include "core/SlamPipeline.hpp"
+#include "core/extensions/Relocalisation.hpp"
 
 namespace uavslam {
 namespace {
@@ -74,7 +74,7 @@ TEST_F(PipelineInRoom, DropsBadScansWithACountedReason) {
 }
 
 TEST_F(PipelineInRoom, TracksAFlightAndAddsKeyframesAfterEnoughMotion) {
-  config.nearest_neighbour.index = "exact";
+  config.nearest_neighbour.index = IndexKind::Exact;
   SlamPipeline slam(config, start);
   // 2 m along x at 0.5 m/s while climbing 0.5 m, scans at 40 Hz, IMU at 200 Hz. A level planar
   // scanner with no floor beams: only x-y is observable, so only x-y is checked.
@@ -106,7 +106,7 @@ TEST_F(PipelineInRoom, TracksAFlightAndAddsKeyframesAfterEnoughMotion) {
 // A jump of 1.3 m between two scans: beyond the 0.3 m correspondence gate and beyond the seed's
 // 1 m "distance moved" limit, so from the last position the matcher cannot find the scan.
 TEST_F(PipelineInRoom, AMotionPriorStartsTheMatcherWhereTheVehicleWent) {
-  config.nearest_neighbour.index = "exact";
+  config.nearest_neighbour.index = IndexKind::Exact;
   const Vec3 moved = start + Vec3(1.2, 0.5, 0.0);
   const auto run = [&](const Vec3& predicted_motion) {
     SlamPipeline slam(config, start);
@@ -162,10 +162,10 @@ class HeadingBias : public PipelineInRoom {
     return run;
   }
 
-  SlamConfig rotation_aware(const std::string& heading, const std::string& metric) const {
+  SlamConfig rotation_aware(HeadingMode heading, IcpMetric metric) const {
     SlamConfig c = config;
-    c.nearest_neighbour.index = "exact";
-    c.icp.motion_prior = "odometry";
+    c.nearest_neighbour.index = IndexKind::Exact;
+    c.icp.motion_prior = MotionPrior::Odometry;
     c.icp.heading = heading;
     c.icp.metric = metric;
     c.icp.iterations = 20;
@@ -176,15 +176,16 @@ class HeadingBias : public PipelineInRoom {
 
 TEST_F(HeadingBias, TheSeedKeepsTheSourcesHeading) {
   SlamConfig c = config;
-  c.nearest_neighbour.index = "exact";
+  c.nearest_neighbour.index = IndexKind::Exact;
   const Run run = fly(c, 10);
   for (const double correction : run.corrections) EXPECT_EQ(correction, 0.0);
   EXPECT_NEAR(run.last_heading_error, kBias, 1e-9);
 }
 
 TEST_F(HeadingBias, EveryScanMeasuresTheHeadingAndUndoesTheBias) {
-  for (const std::string metric : {"point_to_point", "point_to_line"}) {
-    const Run run = fly(rotation_aware("every_scan", metric), 10);
+  for (const IcpMetric mode : {IcpMetric::PointToPoint, IcpMetric::PointToLine}) {
+    const std::string_view metric = mode_name(mode);
+    const Run run = fly(rotation_aware(HeadingMode::EveryScan, mode), 10);
     EXPECT_NEAR(run.corrections[1], -kBias, 0.002) << metric << ": corrected at the first scan";
     EXPECT_LT(run.last_heading_error, 0.002) << metric;
     EXPECT_LT(run.last_position_error, 0.01) << metric;
@@ -192,7 +193,7 @@ TEST_F(HeadingBias, EveryScanMeasuresTheHeadingAndUndoesTheBias) {
 }
 
 TEST_F(HeadingBias, APeriodicCheckCorrectsTheHeadingOnlyWhenItIsDue) {
-  const Run run = fly(rotation_aware("periodic_check", "point_to_line"), 12);
+  const Run run = fly(rotation_aware(HeadingMode::PeriodicCheck, IcpMetric::PointToLine), 12);
   // Scans 1-4 are matched translation-only with the biased heading; scan 5 is the first check.
   for (int k = 1; k <= 4; ++k) EXPECT_EQ(run.corrections[std::size_t(k)], 0.0) << "scan " << k;
   EXPECT_NEAR(run.corrections[5], -kBias, 0.002);
@@ -205,7 +206,7 @@ TEST_F(HeadingBias, APeriodicCheckCorrectsTheHeadingOnlyWhenItIsDue) {
 // A failed match with a motion prior leaves the vehicle where the prediction says, not where it
 // was: a rejected scan is dead-reckoned.
 TEST_F(PipelineInRoom, ARejectedScanWithAPriorIsDeadReckoned) {
-  config.nearest_neighbour.index = "exact";
+  config.nearest_neighbour.index = IndexKind::Exact;
   config.icp.max_error_after = 0.0;  // every match fails the error check
   SlamPipeline slam(config, start);
   slam.add_imu(level_imu(0.0));
@@ -223,7 +224,7 @@ TEST_F(PipelineInRoom, ARejectedScanWithAPriorIsDeadReckoned) {
 // seed's 1 m correction limit from the last position. With the recovery the ICP searches a grid
 // of starts around it and finds the vehicle; without it (recovery.gap 0, the seed) it cannot.
 TEST_F(PipelineInRoom, AfterAGapInTheScansTheMatcherFindsTheVehicleAgain) {
-  config.nearest_neighbour.index = "exact";
+  config.nearest_neighbour.index = IndexKind::Exact;
   const auto truth_at = [&](double t) -> Vec3 { return start + Vec3(0.8 * t, 0.2 * t, 0.0); };
   const auto fly = [&](SlamPipeline& slam) {
     for (int k = 0; k <= 40; ++k) {  // 1 s of scans, then nothing until t = 3 s

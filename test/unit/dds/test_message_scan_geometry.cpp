@@ -61,5 +61,27 @@ TEST(MessageScanGeometry, TheScansOfALogRoundTrip) {
   EXPECT_FLOAT_EQ(static_cast<float>(received->max_range), 81.0f);
 }
 
+// A sensor file's scanner: its own geometry while the beam count matches; a real scanner's other
+// layout (a UTM-30LX sends 1081 steps) keeps its beams, on the file's mount and mirror.
+TEST(MessageScanGeometry, TheSensorsGeometryOrTheScansOwnLayoutOnTheSensorsMount) {
+  LidarSpec lidar;  // 1080 beams over 270 deg
+  lidar.mount_position = Vec3(0.1, 0.0, 0.2);
+  lidar.floor_mirror.beams = 30;
+  MessageScanGeometry geometries(lidar);
+  ASSERT_TRUE(geometries.sensor_geometry());
+  const auto configured = geometries.for_message(
+      scan_message(1080, static_cast<float>(-0.75 * kPi), static_cast<float>(1.5 * kPi / 1079)));
+  EXPECT_EQ(configured, geometries.sensor_geometry());
+  EXPECT_FALSE(geometries.own_layout_used());
+
+  const auto own = geometries.for_message(
+      scan_message(1081, static_cast<float>(-0.75 * kPi), static_cast<float>(kPi / 720)));
+  EXPECT_TRUE(geometries.own_layout_used());
+  ASSERT_EQ(own->directions.size(), 1081u);
+  EXPECT_TRUE(own->mount.translation().isApprox(Vec3(0.1, 0.0, 0.2)));
+  EXPECT_LT(own->directions[0].z(), -0.9) << "the mirror's beams look down";
+  EXPECT_EQ(own->directions[540].z(), 0.0);
+}
+
 }  // namespace
 }  // namespace uavslam::dds

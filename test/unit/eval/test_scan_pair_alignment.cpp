@@ -70,7 +70,7 @@ TEST_F(ScanPairAlignmentTest, AnExactRelationIsLeftWhereItIs) {
 // The seed's mode keeps the relation's yaw and finds only the translation.
 TEST_F(ScanPairAlignmentTest, TheSeedsTranslationOnlyModeKeepsTheRelationsYaw) {
   SlamConfig seed = shipped_2d_config();
-  seed.icp.heading = "source";
+  seed.icp.heading = uavslam::HeadingMode::Source;
   Relation off = truth;
   off.x -= 0.04;
   const ScanPairAlignment found =

@@ -73,7 +73,7 @@ TEST_F(YamlFileTest, MinimalScenarioTakesTheDefaults) {
   EXPECT_EQ(scenario.waypoints[0].yaw_deg, 0.0);
   EXPECT_EQ(scenario.waypoints[1].yaw_deg, 90.0);
   EXPECT_EQ(scenario.waypoints[1].position, Vec3(2.0, 1.0, 1.0));
-  const sim::LidarSpec lidar_defaults;
+  const LidarSpec lidar_defaults;
   EXPECT_EQ(scenario.lidar.beams, lidar_defaults.beams);
   EXPECT_EQ(scenario.lidar.mount_position, lidar_defaults.mount_position);
   EXPECT_EQ(scenario.imu.rate_hz, sim::ImuSpec{}.rate_hz);
@@ -151,16 +151,18 @@ TEST_F(YamlFileTest, MissingRequiredKeyIsNamed) {
 
 // The matcher's --sensor: a file of a real scanner alone, or a whole scenario.
 TEST_F(YamlFileTest, ASensorFileHoldsOnlyTheScanner) {
-  const sim::Scenario shipped =
+  const SensorFile shipped =
       load_sensor(std::string(UAVSLAM_SOURCE_DIR) + "/config/sensors/hokuyo_utm30lx.yaml");
-  EXPECT_EQ(shipped.name, "hokuyo_utm30lx");
-  EXPECT_EQ(shipped.lidar.beams, 1081);
-  EXPECT_EQ(shipped.lidar.floor_mirror.beams, 30);
-  EXPECT_TRUE(shipped.waypoints.empty());
+  EXPECT_EQ(shipped.sensor.name, "hokuyo_utm30lx");
+  EXPECT_EQ(shipped.sensor.lidar.beams, 1081);
+  EXPECT_EQ(shipped.sensor.lidar.floor_mirror.beams, 30);
+  EXPECT_FALSE(shipped.take_off);
 
-  const sim::Scenario scenario = load_sensor(write("scenario.yaml", kMinimalScenario));
-  EXPECT_EQ(scenario.waypoints.size(),
-            load_scenario(write("again.yaml", kMinimalScenario)).waypoints.size());
+  const SensorFile scenario = load_sensor(write("scenario.yaml", kMinimalScenario));
+  const sim::Scenario flight_of = load_scenario(write("again.yaml", kMinimalScenario));
+  ASSERT_TRUE(scenario.take_off);
+  EXPECT_EQ(*scenario.take_off, flight_of.waypoints.front().position);
+  EXPECT_EQ(scenario.sensor.lidar.beams, flight_of.lidar.beams);
 
   const std::string no_lidar = write("no_lidar.yaml", "name: bare\n");
   EXPECT_THAT(config_error_of([&] { load_sensor(no_lidar); }),
@@ -339,19 +341,19 @@ imu: {max_gap: 0.02}
   EXPECT_EQ(c.icp.max_error_after, 0.1);
   EXPECT_EQ(c.icp.max_error_ratio, 0.9);
   EXPECT_EQ(c.icp.max_correspondence_distance, 1.5);
-  EXPECT_EQ(c.icp.motion_prior, "odometry");
-  EXPECT_EQ(c.icp.heading, "periodic_check");
+  EXPECT_EQ(c.icp.motion_prior, MotionPrior::Odometry);
+  EXPECT_EQ(c.icp.heading, HeadingMode::PeriodicCheck);
   EXPECT_EQ(c.icp.heading_check_every, 7);
   EXPECT_EQ(c.icp.heading_check_tolerance, 0.02);
   EXPECT_EQ(c.icp.max_rotation, 0.2);
-  EXPECT_EQ(c.icp.metric, "point_to_line");
+  EXPECT_EQ(c.icp.metric, IcpMetric::PointToLine);
   EXPECT_EQ(c.icp.prior_weight, 0.01);
   EXPECT_EQ(c.icp.robust_scale, 0.05);
   EXPECT_EQ(c.icp.refine_iterations, 3);
   EXPECT_EQ(c.icp.stop_step, 0.001);
   EXPECT_EQ(c.map.keyframe_rotation, 0.3);
   EXPECT_EQ(c.map.min_point_spacing, 0.03);
-  EXPECT_EQ(c.nearest_neighbour.index, "exact");
+  EXPECT_EQ(c.nearest_neighbour.index, IndexKind::Exact);
   EXPECT_EQ(c.nearest_neighbour.flann_trees, 8);
   EXPECT_EQ(c.nearest_neighbour.flann_checks, 128);
   EXPECT_EQ(c.map.keyframe_height, 0.1);
@@ -396,7 +398,7 @@ TEST(SlamConfigOverride, SetsOneValue) {
   apply_slam_config_override(config, "nearest_neighbour.index=exact");
   apply_slam_config_override(config, "map.keyframe_lateral=0.75");
   EXPECT_EQ(config.icp.iterations, 12);
-  EXPECT_EQ(config.nearest_neighbour.index, "exact");
+  EXPECT_EQ(config.nearest_neighbour.index, IndexKind::Exact);
   EXPECT_EQ(config.map.keyframe_lateral, 0.75);
   EXPECT_EQ(config.icp.max_translation, SlamConfig{}.icp.max_translation);
 }

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "SimTestHelpers.hpp"
-#include "sim/Angles.hpp"
+#include "core/Angles.hpp"
 #include "sim/ImuSimulator.hpp"
 #include "sim/LidarSimulator.hpp"
 

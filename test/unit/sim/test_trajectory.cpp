@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "SimTestHelpers.hpp"
-#include "sim/Angles.hpp"
+#include "core/Angles.hpp"
 #include "sim/Trajectory.hpp"
 
 namespace uavslam::sim {

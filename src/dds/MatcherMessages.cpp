@@ -1,0 +1,50 @@
+#include "dds/MatcherMessages.hpp"
+
+#include <algorithm>
+
+namespace uavslam::dds {
+
+float pose_quality(const ScanReport& report, const SlamConfig& config) {
+  if (report.outcome == ScanOutcome::MapInitialised) return 1.0f;
+  return static_cast<float>(
+      std::clamp(1.0 - report.error_after / config.icp.max_error_after, 0.0, 1.0));
+}
+
+msg::PoseWithCovarianceStamped pose_message(const ScanReport& report, const SlamConfig& config,
+                                            std::uint64_t scan_seq, std::uint64_t seq,
+                                            const Source& source) {
+  return to_msg(report.pose, pose_quality(report, config), scan_seq, seq, source);
+}
+
+msg::MapPoints keyframe_message(const Keyframe& keyframe, const Source& source) {
+  return to_msg(keyframe.points, keyframe.sensor_origin, keyframe.stamp, keyframe.index, source);
+}
+
+msg::MatcherStatus status_message(const ScanReport& report, const Scan& scan, double processing_ms,
+                                  double latency_ms, const MatcherCounts& counts, std::uint64_t seq,
+                                  const Source& source) {
+  msg::MatcherStatus s;
+  msg::Header header;
+  header.stamp(to_msg_time(scan.stamp));
+  header.frame_id(source.frame_id);
+  header.seq(seq);
+  header.vehicle_id(source.vehicle_id);
+  s.header(header);
+  s.scan_seq(scan.sequence);
+  s.outcome(to_string(report.outcome));
+  s.iterations(report.iterations);
+  s.error_before(report.error_before);
+  s.error_after(report.error_after);
+  s.points_used(static_cast<std::uint32_t>(report.points_used));
+  s.map_updated(report.map_updated);
+  s.map_size(report.map_size);
+  s.latency_ms(latency_ms);
+  s.processing_ms(processing_ms);
+  s.scans_received(counts.received);
+  s.scans_skipped(counts.skipped);
+  s.scans_rejected(counts.rejected);
+  s.scans_accepted(counts.accepted);
+  return s;
+}
+
+}  // namespace uavslam::dds

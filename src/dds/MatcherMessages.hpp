@@ -1,0 +1,42 @@
+// What the matcher publishes for one scan, from what the vehicle's SLAM made of it
+// (slam/VehicleSlam): the pose, the keyframe's points and the scan's status.
+#pragma once
+
+#include <cstdint>
+
+#include <msg/MapPoints.h>
+#include <msg/MatcherStatus.h>
+#include <msg/Pose.h>
+
+#include "core/SlamConfig.hpp"
+#include "core/SlamPipeline.hpp"
+#include "dds/Conversions.hpp"
+#include "slam/VehicleSlam.hpp"
+
+namespace uavslam::dds {
+
+// How good the match was, for consumers of `pose`: 1 for a perfect fit, 0 at the rejection limit
+// (icp.max_error_after); 1 for the scan that seeded the map.
+float pose_quality(const ScanReport& report, const SlamConfig& config);
+
+msg::PoseWithCovarianceStamped pose_message(const ScanReport& report, const SlamConfig& config,
+                                            std::uint64_t scan_seq, std::uint64_t seq,
+                                            const Source& source);
+
+// The header's seq is the keyframe's index.
+msg::MapPoints keyframe_message(const Keyframe& keyframe, const Source& source);
+
+// The matcher's running counts, as the status carries them.
+struct MatcherCounts {
+  std::uint64_t received = 0;
+  std::uint64_t skipped = 0;  // dropped unprocessed: a fresher scan was waiting
+  std::uint64_t rejected = 0;
+  std::uint64_t accepted = 0;  // poses published
+};
+
+// processing_ms: the matcher's time on the scan; latency_ms: from its publication to now.
+msg::MatcherStatus status_message(const ScanReport& report, const Scan& scan, double processing_ms,
+                                  double latency_ms, const MatcherCounts& counts, std::uint64_t seq,
+                                  const Source& source);
+
+}  // namespace uavslam::dds

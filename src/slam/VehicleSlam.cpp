@@ -1,0 +1,71 @@
+#include "slam/VehicleSlam.hpp"
+
+#include <chrono>
+
+#include "core/ScanProjection.hpp"
+
+namespace uavslam {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+VehicleSlam::VehicleSlam(const SlamConfig& config, const DenseProducts& products)
+    : pipeline_(config) {
+  // The odometry is as much "at the scan's time" as the orientation: the same tolerance.
+  if (config.icp.motion_prior == MotionPrior::Odometry) odometry_.emplace(config.imu.max_gap);
+  if (products.cloud_voxel) cloud_ = std::make_unique<DenseCloud>(*products.cloud_voxel);
+  if (products.occupancy) occupancy_ = std::make_unique<OccupancyOctree>(*products.occupancy);
+}
+
+void VehicleSlam::add_odometry(const OdometrySample& sample) {
+  if (odometry_) odometry_->add(sample);
+}
+
+// The ICP starts from the odometry's motion since the last posed scan (none without the prior:
+// the seed); a scan that got a pose is the next motion's start.
+VehicleScan VehicleSlam::process_scan(const Scan& scan) {
+  VehicleScan result;
+  const auto started = Clock::now();
+  const Vec3 predicted = odometry_ ? odometry_->motion_to(scan.stamp) : Vec3::Zero();
+  result.report = pipeline_.process_scan(scan, predicted);
+  if (odometry_ && result.posed()) odometry_->scan_posed(scan.stamp);
+  result.pipeline_seconds = seconds_since(started);
+  if (result.report.map_updated) result.keyframe = keyframe_of(scan, result.report);
+  if (result.posed()) add_dense(scan, result.report, result.keyframe ? &*result.keyframe : nullptr);
+  return result;
+}
+
+// The scanner's place at the keyframe: the body pose moved by the sensor's mount.
+Keyframe VehicleSlam::keyframe_of(const Scan& scan, ScanReport& report) {
+  Keyframe keyframe;
+  keyframe.index = static_cast<std::uint32_t>(keyframes_++);
+  keyframe.stamp = report.pose.stamp;
+  keyframe.sensor_origin =
+      report.pose.position + report.pose.orientation * scan.geometry->mount.translation();
+  keyframe.points = std::move(report.added_points);
+  return keyframe;
+}
+
+// The offline variant's products: every valid point of the posed scan into the cloud, and a
+// keyframe's full scan into the OctoMap (ray-casting every scan would cost more than the matching).
+void VehicleSlam::add_dense(const Scan& scan, const ScanReport& report, const Keyframe* keyframe) {
+  if (cloud_) {
+    const auto started = Clock::now();
+    cloud_->add_scan(scan, report.pose);
+    cloud_seconds_ += seconds_since(started);
+  }
+  if (!occupancy_ || !keyframe) return;
+  const auto started = Clock::now();
+  Points points = project_scan(scan, report.pose.orientation).points;
+  for (Vec3& p : points) p += report.pose.position;
+  occupancy_->insert_keyframe(points, keyframe->sensor_origin);
+  occupancy_seconds_ += seconds_since(started);
+}
+
+}  // namespace uavslam

@@ -1,0 +1,91 @@
+// One vehicle's SLAM, for every caller: the matcher process (slam_matcher), `uavslam run`,
+// `uavslam offline` and `uavslam simulate` all run this object and only move data in and out.
+// It owns the core's pipeline (SlamPipeline) and what goes around it:
+//   - the motion prior: with icp.motion_prior odometry, the odometry's motion since the last posed
+//     scan is the ICP's start (OdometryPrior);
+//   - the sensor's mount: where the scanner was when a keyframe was taken, the rays' origin;
+//   - the keyframe products: what each keyframe adds to the map, and, for the offline variant,
+//     the dense cloud of every posed scan and the occupancy octree of the keyframes.
+// The pose-graph back end plugs in here.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "core/SlamConfig.hpp"
+#include "core/SlamPipeline.hpp"
+#include "maps/DenseCloud.hpp"
+#include "maps/OccupancyOctree.hpp"
+#include "slam/OdometryPrior.hpp"
+
+namespace uavslam {
+
+// The offline variant's dense products (seed 5.4.3.3); none in real time.
+struct DenseProducts {
+  std::optional<double> cloud_voxel;         // m; <= 0 keeps every point
+  std::optional<OccupancyConfig> occupancy;  // the OctoMap of the keyframes' full scans
+};
+
+// What a keyframe adds to the map, as the map's consumers take it (the map server, the offline
+// occupancy map).
+struct Keyframe {
+  std::uint32_t index = 0;  // 0, 1, ... in the order the keyframes were made
+  double stamp = 0.0;
+  Vec3 sensor_origin = Vec3::Zero();  // where the scanner was: the origin of its rays
+  Points points;                      // the aligned points it added to the world map
+};
+
+struct VehicleScan {
+  ScanReport report;  // its added_points are moved into keyframe
+  std::optional<Keyframe> keyframe;
+  double pipeline_seconds = 0.0;  // the matching alone (motion prior and pipeline)
+
+  // The scan got a pose: matched, or (rejected with a motion prior) dead-reckoned.
+  bool posed() const { return report.accepted() || report.dead_reckoned; }
+};
+
+class VehicleSlam {
+ public:
+  explicit VehicleSlam(const SlamConfig& config, const DenseProducts& products = {});
+
+  // Where the body is at the first scan (the take-off point): the map's frame is anchored there.
+  // Before the first scan; the origin when never called.
+  void start_at(const Vec3& position) { pipeline_.start_at(position); }
+
+  void add_imu(const ImuSample& sample) { pipeline_.add_imu(sample); }
+  // Wheel odometry for the motion prior; ignored unless icp.motion_prior is odometry. A
+  // non-finite or out-of-order sample is dropped and counted (odometry_prior()->rejected()).
+  void add_odometry(const OdometrySample& sample);
+
+  VehicleScan process_scan(const Scan& scan);
+
+  const SlamPipeline& pipeline() const { return pipeline_; }
+  const SlamConfig& config() const { return pipeline_.config(); }
+  // Null unless icp.motion_prior is odometry.
+  const OdometryPrior* odometry_prior() const { return odometry_ ? &*odometry_ : nullptr; }
+  std::size_t keyframes() const { return keyframes_; }
+
+  // The dense products (null when not asked for), and the seconds spent building them.
+  const DenseCloud* cloud() const { return cloud_.get(); }
+  const OccupancyOctree* occupancy() const { return occupancy_.get(); }
+  std::unique_ptr<DenseCloud> take_cloud() { return std::move(cloud_); }
+  std::unique_ptr<OccupancyOctree> take_occupancy() { return std::move(occupancy_); }
+  double cloud_seconds() const { return cloud_seconds_; }
+  double occupancy_seconds() const { return occupancy_seconds_; }
+
+ private:
+  Keyframe keyframe_of(const Scan& scan, ScanReport& report);
+  void add_dense(const Scan& scan, const ScanReport& report, const Keyframe* keyframe);
+
+  SlamPipeline pipeline_;
+  std::optional<OdometryPrior> odometry_;
+  std::unique_ptr<DenseCloud> cloud_;
+  std::unique_ptr<OccupancyOctree> occupancy_;
+  std::size_t keyframes_ = 0;
+  double cloud_seconds_ = 0.0;
+  double occupancy_seconds_ = 0.0;
+};
+
+}  // namespace uavslam

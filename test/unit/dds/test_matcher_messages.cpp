@@ -1,0 +1,65 @@
+// What the matcher publishes for a scan: the pose's quality, the keyframe, the status.
+#include <gtest/gtest.h>
+
+#include "dds/MatcherMessages.hpp"
+
+namespace uavslam::dds {
+namespace {
+
+TEST(MatcherMessages, QualityFallsFromOneForAPerfectFitToZeroAtTheRejectionLimit) {
+  SlamConfig config;  // icp.max_error_after 0.05 m^2
+  ScanReport report;
+  report.outcome = ScanOutcome::Accepted;
+  report.error_after = 0.0;
+  EXPECT_FLOAT_EQ(pose_quality(report, config), 1.0f);
+  report.error_after = 0.025;
+  EXPECT_FLOAT_EQ(pose_quality(report, config), 0.5f);
+  report.error_after = 0.2;
+  EXPECT_FLOAT_EQ(pose_quality(report, config), 0.0f);
+  report.outcome = ScanOutcome::MapInitialised;
+  EXPECT_FLOAT_EQ(pose_quality(report, config), 1.0f) << "the scan that seeded the map";
+}
+
+TEST(MatcherMessages, TheKeyframeAndTheStatusCarryWhatTheScanGave) {
+  Keyframe keyframe;
+  keyframe.index = 4;
+  keyframe.stamp = 12.5;
+  keyframe.sensor_origin = Vec3(1.0, 2.0, 0.3);
+  keyframe.points = {Vec3(1.5, 2.0, 0.3), Vec3(1.0, 2.5, 0.3)};
+  const msg::MapPoints points = keyframe_message(keyframe, {"map", "uav1"});
+  EXPECT_EQ(points.keyframe_index(), 4u);
+  EXPECT_EQ(points.header().seq(), 4u);
+  EXPECT_EQ(points.header().vehicle_id(), "uav1");
+  EXPECT_FLOAT_EQ(points.sensor_origin().z(), 0.3f);
+  ASSERT_EQ(from_msg(points).size(), 2u);
+  EXPECT_TRUE(from_msg(points)[1].isApprox(Vec3(1.0, 2.5, 0.3), 1e-6));
+
+  ScanReport report;
+  report.outcome = ScanOutcome::ErrorIncreased;
+  report.iterations = 10;
+  report.error_before = 0.01;
+  report.error_after = 0.02;
+  report.points_used = 216;
+  report.map_size = 4320;
+  Scan scan;
+  scan.stamp = 12.5;
+  scan.sequence = 99;
+  const msg::MatcherStatus status =
+      status_message(report, scan, 0.4, 1.5, {100, 2, 3, 95}, 7, {"map", "uav1"});
+  EXPECT_EQ(status.outcome(), "error_increased");
+  EXPECT_EQ(status.scan_seq(), 99u);
+  EXPECT_EQ(status.header().seq(), 7u);
+  EXPECT_DOUBLE_EQ(from_msg_time(status.header().stamp()), 12.5);
+  EXPECT_EQ(status.iterations(), 10);
+  EXPECT_EQ(status.points_used(), 216u);
+  EXPECT_EQ(status.map_size(), 4320u);
+  EXPECT_DOUBLE_EQ(status.processing_ms(), 0.4);
+  EXPECT_DOUBLE_EQ(status.latency_ms(), 1.5);
+  EXPECT_EQ(status.scans_received(), 100u);
+  EXPECT_EQ(status.scans_skipped(), 2u);
+  EXPECT_EQ(status.scans_rejected(), 3u);
+  EXPECT_EQ(status.scans_accepted(), 95u);
+}
+
+}  // namespace
+}  // namespace uavslam::dds
