@@ -17,7 +17,7 @@ using Clock = std::chrono::steady_clock;
 class Pass {
  public:
   Pass(const PassOptions& options, PassResult& result)
-      : result_(result), slam_(options.config, {options.cloud_voxel, options.occupancy}) {}
+      : result_(result), slam_(options.config, options.products) {}
 
   void take(const LogEvent& event) {
     switch (event.kind) {

@@ -1,6 +1,6 @@
-// One pass of the SLAM pipeline over a flight's sensor data (LogInput), as fast as it goes: the
-// real-time pass of the seed, or its offline variant, which also keeps every point of every posed
-// scan (DenseCloud) and ray-casts each keyframe's points into an OctoMap.
+// One pass of a vehicle's SLAM (slam/VehicleSlam) over a flight's sensor data (LogInput), as fast
+// as it goes: the real-time pass of the seed, or its offline variant, which also keeps every point
+// of every posed scan (DenseCloud) and ray-casts each keyframe's points into an OctoMap.
 #pragma once
 
 #include <cstddef>
@@ -16,14 +16,13 @@
 #include "eval/Relation.hpp"
 #include "maps/DenseCloud.hpp"
 #include "maps/OccupancyOctree.hpp"
+#include "slam/VehicleSlam.hpp"
 
 namespace uavslam::cli {
 
 struct PassOptions {
   SlamConfig config;
-  // The dense products; none in the real-time pass.
-  std::optional<double> cloud_voxel;         // m; <= 0 keeps every point
-  std::optional<OccupancyConfig> occupancy;  // the OctoMap of the keyframes' points
+  DenseProducts products;  // none in the real-time pass
 };
 
 // A scan that got a pose: matched, or (rejected with a motion prior) dead-reckoned.

@@ -258,8 +258,9 @@ int run_offline(const OfflineOptions& o) {
   const std::optional<double> map_spacing =
       o.map_spacing ? o.map_spacing
                     : (o.carmen.empty() ? std::optional<double>(kFlightMapSpacing) : std::nullopt);
-  PassOptions dense_options{offline_variant(config, map_spacing), o.voxel,
-                            OccupancyConfig{o.octomap_resolution, -1.0, 0.7, 0.4, /*batch=*/true}};
+  PassOptions dense_options{
+      offline_variant(config, map_spacing),
+      {o.voxel, OccupancyConfig{o.octomap_resolution, -1.0, 0.7, 0.4, /*batch=*/true}}};
   PassResult dense = run_one_pass(input, dense_options, "offline  ", o);
   std::optional<PassResult> realtime;
   if (!o.skip_realtime && !dense.stopped_early) {
