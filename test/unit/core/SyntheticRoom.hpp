@@ -22,6 +22,13 @@ inline double distance_to_box_wall(const Vec3& origin, const Vec3& dir, const Ve
   return best;
 }
 
+// An orientation sample of a level body heading along x (the identity), at `stamp`.
+inline ImuSample level_imu(double stamp) {
+  ImuSample s;
+  s.stamp = stamp;
+  return s;
+}
+
 struct SyntheticRoom {
   Vec3 lo{0, 0, 0};
   Vec3 hi{12, 7, 3};

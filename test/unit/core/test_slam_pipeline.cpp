@@ -10,11 +10,7 @@
 namespace uavslam {
 namespace {
 
-ImuSample level_imu(double stamp) {
-  ImuSample s;
-  s.stamp = stamp;
-  return s;
-}
+using test::level_imu;
 
 class PipelineInRoom : public ::testing::Test {
  protected:

@@ -5,18 +5,12 @@
 
 #include "core/Angles.hpp"
 #include "sensor/LidarGeometry.hpp"
+#include "unit/sensor/ThreeBeamLidar.hpp"
 
 namespace uavslam {
 namespace {
 
-// Three beams: to the right (-y), straight ahead (+x) and to the left (+y).
-LidarSpec three_beam_lidar() {
-  LidarSpec spec;
-  spec.beams = 3;
-  spec.fov_deg = 180.0;
-  spec.range_noise_std = 0.0;
-  return spec;
-}
+using test::three_beam_lidar;
 
 TEST(LidarGeometry, PlanarBeamsSpanTheFieldOfViewAroundX) {
   const LidarSpec spec;  // the Hokuyo defaults: 1080 beams over 270 degrees

@@ -7,18 +7,12 @@
 #include "core/Angles.hpp"
 #include "sim/LidarSimulator.hpp"
 #include "sim/Trajectory.hpp"
+#include "unit/sensor/ThreeBeamLidar.hpp"
 
 namespace uavslam::sim {
 namespace {
 
-// Three beams: to the right (-y), straight ahead (+x) and to the left (+y).
-LidarSpec three_beam_lidar() {
-  LidarSpec spec;
-  spec.beams = 3;
-  spec.fov_deg = 180.0;
-  spec.range_noise_std = 0.0;
-  return spec;
-}
+using test::three_beam_lidar;
 
 Pose level_pose(const Vec3& position, double yaw_deg) {
   Pose pose;

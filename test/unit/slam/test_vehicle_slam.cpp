@@ -8,11 +8,7 @@
 namespace uavslam {
 namespace {
 
-ImuSample level_imu(double stamp) {
-  ImuSample s;
-  s.stamp = stamp;
-  return s;
-}
+using test::level_imu;
 
 Pose level_pose(const Vec3& position, double stamp) {
   Pose p;
