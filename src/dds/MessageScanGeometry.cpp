@@ -12,7 +12,7 @@ std::shared_ptr<const ScanGeometry> MessageScanGeometry::for_message(
   if (sensor_ && (message.ranges().size() == sensor_->directions.size() || lidar_->rings > 1)) {
     return sensor_;
   }
-  own_layout_used_ = own_layout_used_ || sensor_;
+  if (sensor_) own_layout_used_ = true;
   return layout_of(message);
 }
 
