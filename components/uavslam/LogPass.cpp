@@ -36,6 +36,7 @@ class Pass {
   void finish() {
     result_.outcomes = slam_.pipeline().outcome_counts();
     result_.map = slam_.pipeline().map().points();
+    result_.keyframes = slam_.keyframes();
     result_.cloud = slam_.take_cloud();
     result_.occupancy = slam_.take_occupancy();
     result_.cloud_seconds = slam_.cloud_seconds();
@@ -53,7 +54,6 @@ class Pass {
       result_.posed.push_back({event.output_stamp, pose, event.truth, scan.report.dead_reckoned});
     }
     ++result_.scans_in;
-    result_.keyframes += scan.report.map_updated;
     result_.dead_reckoned += scan.report.dead_reckoned;
   }
 

@@ -108,7 +108,6 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
       run.estimate.push_back(report.pose);
       run.ground_truth.push_back(log.ground_truth[i]);
     }
-    run.keyframes += report.map_updated;
     run.trace.push_back({scan.stamp, report.outcome, report.points_used, report.error_before,
                          report.error_after, report.iterations, report.map_updated,
                          report.pose.position, log.ground_truth[i].position,
@@ -118,6 +117,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
   run.outcomes = slam.pipeline().outcome_counts();
   run.map = slam.pipeline().map().points();
+  run.keyframes = slam.keyframes();
   if (progress) progress(run.scans_in, log.scans.size());
   return run;
 }
