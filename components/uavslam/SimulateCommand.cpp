@@ -34,13 +34,15 @@ struct SimulateOptions {
 void write_trace(const std::string& path, const std::vector<ScanTrace>& trace) {
   std::ofstream csv(path);
   csv << "stamp,outcome,points,error_before,error_after,iterations,keyframe,x,y,z,true_x,true_y,"
-         "true_z,ms\n";
+         "true_z,ms,degenerate,weakest_fraction,sigma_x,sigma_y,sigma_z\n";
   for (const ScanTrace& t : trace) {
     csv << std::fixed << std::setprecision(4) << t.stamp << ',' << to_string(t.outcome) << ','
         << t.points_used << ',' << std::setprecision(6) << t.error_before << ',' << t.error_after
         << ',' << t.iterations << ',' << t.map_updated << ',' << std::setprecision(4)
         << t.position.x() << ',' << t.position.y() << ',' << t.position.z() << ',' << t.truth.x()
-        << ',' << t.truth.y() << ',' << t.truth.z() << ',' << t.milliseconds << '\n';
+        << ',' << t.truth.y() << ',' << t.truth.z() << ',' << t.milliseconds << ',' << t.degenerate
+        << ',' << t.weakest_fraction << ',' << t.sigma.x() << ',' << t.sigma.y() << ','
+        << t.sigma.z() << '\n';
   }
   if (!csv) throw io::file_error(path, "cannot write");
 }

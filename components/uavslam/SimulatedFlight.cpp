@@ -111,7 +111,8 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
     run.trace.push_back({scan.stamp, report.outcome, report.points_used, report.error_before,
                          report.error_after, report.iterations, report.map_updated,
                          report.pose.position, log.ground_truth[i].position,
-                         run.scan_seconds.back() * 1e3});
+                         run.scan_seconds.back() * 1e3, report.seen.degenerate,
+                         report.seen.weakest_fraction, report.covariance.diagonal().cwiseSqrt()});
     if (progress && i % 400 == 0) progress(i, log.scans.size());
   }
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();

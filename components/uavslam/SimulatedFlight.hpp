@@ -42,6 +42,9 @@ struct ScanTrace {
   Vec3 position = Vec3::Zero();  // the estimate after this scan
   Vec3 truth = Vec3::Zero();
   double milliseconds = 0.0;
+  int degenerate = 0;             // directions the scan could not see (degeneracy analysis)
+  double weakest_fraction = 0.0;  // the information fraction of the weakest horizontal direction
+  Vec3 sigma = Vec3::Zero();      // m; the reported position's standard deviation per axis
 };
 
 struct SlamRun {

@@ -14,6 +14,8 @@ struct Correspondences {
   std::vector<Vec3> weights;  // omega_i per axis (eq. 5.17)
   std::vector<Vec3> normals;  // empty (point-to-point), or per pair: the horizontal unit normal
                               // of the wall at d_i, zero where none is known
+  std::vector<Vec3> scan_normals;  // empty, or per pair: the wall's normal at m_i from the scan
+                                   // itself (what the scan can see, ScanInformation)
   bool empty() const { return scan.empty(); }
   bool has_normal(std::size_t i) const { return !normals.empty() && !normals[i].isZero(); }
 };

@@ -34,6 +34,7 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
   }
   const double max_squared = max_distance * max_distance;
   const bool with_normals = !map.normals().empty();
+  const bool with_scan_normals = !scan.normals.empty();
   Correspondences pairs;
   pairs.scan.reserve(scan.points.size());
   pairs.map.reserve(scan.points.size());
@@ -47,6 +48,7 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
     pairs.map.push_back(d);
     pairs.weights.push_back(w);
     if (with_normals) pairs.normals.push_back(map.normals()[nearest[i].index]);
+    if (with_scan_normals) pairs.scan_normals.push_back(scan.normals[i]);
   }
   return pairs;
 }
@@ -171,6 +173,7 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, cons
   result.error_after = error_function(pairs);
   result.correspondences = pairs.scan.size();
   result.aligned = std::move(moving.points);
+  result.pairs = std::move(pairs);
   if (result.error_after > config_.max_error_after) {
     result.outcome = ScanOutcome::ErrorTooLarge;
   } else if (result.error_after > config_.max_error_ratio * result.error_before) {

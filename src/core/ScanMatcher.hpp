@@ -24,6 +24,7 @@ namespace uavslam {
 struct ScanPoints {
   Points points;
   std::vector<Vec3> weights;
+  std::vector<Vec3> normals;  // empty (the seed), or each point's wall normal (ScanInformation)
 };
 
 // Uniform weights (the seed) or split ones (level beams x-y, vertical beams z).
@@ -61,6 +62,7 @@ struct MatchResult {
   int iterations = 0;
   std::size_t correspondences = 0;  // pairs in the final error
   Points aligned;                   // the scan's points in the world frame at `position`
+  Correspondences pairs;            // the pairs of the final error (what the scan saw)
 };
 
 class ScanMatcher {

@@ -12,6 +12,7 @@ namespace uavslam {
 enum class MotionPrior {
   None,      // the last position: the seed, which has no motion model
   Odometry,  // the last position plus the odometry's motion since the previous posed scan
+  Imu,       // the last position plus the IMU's accelerations integrated since (slam/InertialPrior)
 };
 
 // Where the heading comes from (icp.heading).
@@ -40,8 +41,10 @@ template <typename Mode>
 struct ModeNames;
 template <>
 struct ModeNames<MotionPrior> {
-  static constexpr std::array<std::pair<std::string_view, MotionPrior>, 2> all{
-      {{"none", MotionPrior::None}, {"odometry", MotionPrior::Odometry}}};
+  static constexpr std::array<std::pair<std::string_view, MotionPrior>, 3> all{
+      {{"none", MotionPrior::None},
+       {"odometry", MotionPrior::Odometry},
+       {"imu", MotionPrior::Imu}}};
 };
 template <>
 struct ModeNames<HeadingMode> {
@@ -142,6 +145,26 @@ struct SlamConfig {
     double max_radius = 3.0;  // m; ... at most this
     double grid_step = 0.5;   // m between starts: under twice the pairing gate, so one converges
   } recovery;
+
+  // Beyond the seed: what the scan can see (core/extensions/ScanInformation). A direction whose
+  // information fraction is under `threshold` is degenerate: the pose keeps the motion prior's
+  // position along it instead of the match's, and the report says so.
+  struct Degeneracy {
+    double threshold = 0.0;   // 0: no analysis (the seed trusts every match in every direction)
+    double min_sigma = 0.01;  // m; the pairs' residual spread is taken as at least this
+  } degeneracy;
+
+  // The motion prior's noise (icp.motion_prior imu or odometry): how fast its uncertainty grows.
+  struct Motion {
+    // IMU: white noise of the specific force, m/s^2/sqrt(Hz) (the datasheet's noise density,
+    // with the attitude's noise folded in: a tilt error of theta leaks g theta).
+    double accel_noise_density = 0.003;
+    double accel_bias_walk = 1e-4;          // m/s^3/sqrt(Hz): how fast the bias may wander
+    double initial_speed_sigma = 0.1;       // m/s at the first scan (0.1: starting at rest)
+    double initial_bias_sigma = 0.05;       // m/s^2: the accelerometer's bias before any match
+    double odometry_noise_per_metre = 0.1;  // m of odometry error per m travelled
+    double odometry_noise_floor = 0.002;    // m per scan, however short the motion
+  } motion;
 
   // Orientation source: how far apart the IMU samples around a scan may be.
   struct Imu {

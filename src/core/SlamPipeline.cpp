@@ -4,6 +4,7 @@
 
 #include "core/Heading.hpp"
 #include "core/extensions/Relocalisation.hpp"
+#include "core/extensions/ScanInformation.hpp"
 #include "core/extensions/SurfaceNormals.hpp"
 
 namespace uavslam {
@@ -35,7 +36,7 @@ void SlamPipeline::add_imu(const ImuSample& sample) {
   imu_.add(sample);
 }
 
-ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_motion) {
+ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& prediction) {
   ScanReport report;
   report.pose = pose_;
   if (!is_well_formed(scan)) return finish(report);
@@ -50,10 +51,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
   ProjectedScan projected = project_scan(scan, orientation);
   report.invalid_ranges = projected.invalid;
   // Step 2: every k-th point.
-  const int k = config_.scan.subsample_every;
-  const ScanPoints points =
-      weigh_points(keep_every_kth(projected.points, k), keep_every_kth(projected.vertical, k),
-                   config_.icp.split_axes);
+  const ScanPoints points = scan_points(projected);
   report.points_used = points.points.size();
   if (report.points_used < kMinPoints) {
     report.outcome = ScanOutcome::TooFewPoints;
@@ -73,8 +71,8 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
   // measures its correction, and so the seed's 1 m "distance moved" check, from this start: the
   // check limits what the matcher changed, not the predicted motion itself.
   const Vec3 predicted = heading_correction_ == 0.0
-                             ? predicted_motion
-                             : yaw_rotation(heading_correction_) * predicted_motion;
+                             ? prediction.motion
+                             : yaw_rotation(heading_correction_) * prediction.motion;
   const Pose start{scan.stamp, pose_.position + predicted, orientation};
   report.relocalised = stale(scan.stamp);
   const MatchResult match =
@@ -91,8 +89,10 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
   report.iterations = match.iterations;
   if (match.outcome != ScanOutcome::Accepted) {
     if (!predicted.isZero()) {
+      covariance_ = predicted_covariance(prediction, scan.stamp);
       pose_ = {scan.stamp, pose_.position + predicted, orientation};
       report.pose = pose_;
+      report.covariance = covariance_;
       report.dead_reckoned = true;
     }
     return finish(report);
@@ -106,7 +106,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const Vec3& predicted_mo
   }
 
   // Steps 6-7: report the new pose; a keyframe after enough motion.
-  pose_ = {scan.stamp, match.position, orientation};
+  pose_ = {scan.stamp, keep_what_the_scan_saw(report, match, start, prediction), orientation};
   report.pose = pose_;
   if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
   return finish(report);
@@ -131,6 +131,58 @@ MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted)
   }
   ++scans_since_heading_check_;
   return matcher_.match(map_, points, start, false, &nearest_);
+}
+
+// Steps 1-2's points, thinned to every k-th, with each point's wall normal when the degeneracy
+// analysis needs it.
+ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected) const {
+  const int k = config_.scan.subsample_every;
+  ScanPoints points = weigh_points(keep_every_kth(projected.points, k),
+                                   keep_every_kth(projected.vertical, k), config_.icp.split_axes);
+  if (config_.degeneracy.threshold > 0.0) {
+    // Every neighbour within the gap (0.2 m), up to 20 beams away: a line fitted over a few
+    // centimetres of a near wall is noise (0.25 degree beams lie 4 mm apart at 1 m; ranges err by
+    // about 1 cm), and noise in the normals reads as information along the wall.
+    SurfaceNormalOptions wide;
+    wide.half_window = 20;
+    points.normals =
+        keep_every_kth(estimate_normals(projected.points, projected.vertical, wide), k);
+  }
+  return points;
+}
+
+// Beyond the seed: where the scan is blind (a corridor's axis), the match only held the start, so
+// the position along those directions stays as the motion prior predicted it:
+//   p = p_start + P (p_match - p_start)   (P: projection onto the directions the scan fixes)
+// and the covariance is the match's there, the prediction's elsewhere:
+//   Sigma = Sigma_scan + (I - P) Sigma_predicted (I - P)
+// With no predicted covariance (no motion model), the vehicle may have gone recovery.max_speed
+// per second along a blind direction since the last pose.
+Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult& match,
+                                          const Pose& start, const MotionPrediction& prediction) {
+  if (config_.degeneracy.threshold <= 0.0) return match.position;
+  const bool with_yaw = config_.icp.heading == HeadingMode::EveryScan || match.yaw != 0.0;
+  const bool measures_height = config_.icp.split_axes;
+  report.seen = observability(
+      scan_information(match.pairs, match.position, with_yaw, config_.degeneracy.min_sigma),
+      config_.degeneracy.threshold, measures_height);
+  const Eigen::Matrix3d prior = predicted_covariance(prediction, start.stamp);
+  const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - report.seen.observed;
+  covariance_ = report.seen.covariance + blind * prior * blind.transpose();
+  report.covariance = covariance_;
+  return start.position + report.seen.observed * (match.position - start.position);
+}
+
+// The covariance of the predicted position: the prior's own, turned into the corrected heading;
+// with no motion model, the last pose's grown by recovery.max_speed per second since it.
+Eigen::Matrix3d SlamPipeline::predicted_covariance(const MotionPrediction& prediction,
+                                                   double stamp) const {
+  if (prediction.covariance) {
+    const Eigen::Matrix3d R = yaw_rotation(heading_correction_).toRotationMatrix();
+    return R * *prediction.covariance * R.transpose();
+  }
+  const double reach = config_.recovery.max_speed * (stamp - pose_.stamp);
+  return covariance_ + reach * reach * Eigen::Matrix3d::Identity();
 }
 
 // A gap in the scans longer than recovery.gap since the last pose: the vehicle may be far from it.

@@ -8,11 +8,13 @@
 #include <string>
 
 #include "core/ImuBuffer.hpp"
+#include "core/MotionPrediction.hpp"
 #include "core/ScanMatcher.hpp"
 #include "core/ScanOutcome.hpp"
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/ScanInformation.hpp"
 
 namespace uavslam {
 
@@ -32,6 +34,10 @@ struct ScanReport {
   bool relocalised = false;
   std::size_t map_size = 0;
   Points added_points;  // what this scan added to the map (empty unless map_updated)
+  // Beyond the seed (degeneracy.threshold > 0): what the scan saw of each direction, and the
+  // pose's covariance: the match's in the directions it fixed, the motion prior's in the others.
+  Observability seen;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // m^2, of pose.position
 
   bool accepted() const {
     return outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised;
@@ -48,11 +54,11 @@ class SlamPipeline {
   void start_at(const Vec3& position) { pose_.position = position; }
 
   void add_imu(const ImuSample& sample);
-  // predicted_motion: the body's translation since the previous scan as another source predicts
-  // it (e.g. wheel odometry), in the frame of the orientation source; the ICP starts from the last
-  // position plus it (turned by the heading correction, if any). Zero (the default) is the seed,
-  // which has no motion model.
-  ScanReport process_scan(const Scan& scan, const Vec3& predicted_motion = Vec3::Zero());
+  // prediction: the body's translation since the previous scan as another source predicts it
+  // (wheel odometry, the IMU's accelerations), in the frame of the orientation source; the ICP
+  // starts from the last position plus it (turned by the heading correction, if any). None (the
+  // default) is the seed, which has no motion model.
+  ScanReport process_scan(const Scan& scan, const MotionPrediction& prediction = {});
 
   const WorldMap& map() const { return map_; }
   const Pose& pose() const { return pose_; }
@@ -72,6 +78,10 @@ class SlamPipeline {
   bool stale(double stamp) const;
   bool moved_enough_for_map_update(const Pose& pose) const;
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
+  ScanPoints scan_points(const ProjectedScan& projected) const;
+  Eigen::Matrix3d predicted_covariance(const MotionPrediction& prediction, double stamp) const;
+  Vec3 keep_what_the_scan_saw(ScanReport& report, const MatchResult& match, const Pose& start,
+                              const MotionPrediction& prediction);
 
   SlamConfig config_;
   ImuBuffer imu_;
@@ -84,6 +94,7 @@ class SlamPipeline {
   int scans_since_heading_check_ = 0;
   std::array<std::size_t, kScanOutcomeCount> counts_{};
   std::vector<Neighbour> nearest_;  // the last match's neighbours, the next one's warm start
+  Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();  // of pose_.position
 };
 
 }  // namespace uavslam

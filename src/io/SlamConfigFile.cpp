@@ -141,6 +141,38 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.recovery.grid_step = v.as_double(NumberRange::positive());
        }},
+      {"degeneracy", "threshold",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.degeneracy.threshold = v.as_double(NumberRange::non_negative());
+       }},
+      {"degeneracy", "min_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.degeneracy.min_sigma = v.as_double(NumberRange::positive());
+       }},
+      {"motion", "accel_noise_density",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.motion.accel_noise_density = v.as_double(NumberRange::non_negative());
+       }},
+      {"motion", "accel_bias_walk",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.motion.accel_bias_walk = v.as_double(NumberRange::non_negative());
+       }},
+      {"motion", "initial_speed_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.motion.initial_speed_sigma = v.as_double(NumberRange::non_negative());
+       }},
+      {"motion", "initial_bias_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.motion.initial_bias_sigma = v.as_double(NumberRange::non_negative());
+       }},
+      {"motion", "odometry_noise_per_metre",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.motion.odometry_noise_per_metre = v.as_double(NumberRange::non_negative());
+       }},
+      {"motion", "odometry_noise_floor",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.motion.odometry_noise_floor = v.as_double(NumberRange::non_negative());
+       }},
       {"imu", "max_gap",
        [](SlamConfig& c, const YamlReader& v) {
          c.imu.max_gap = v.as_double(NumberRange::positive());

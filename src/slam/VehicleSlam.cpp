@@ -18,23 +18,42 @@ double seconds_since(Clock::time_point start) {
 VehicleSlam::VehicleSlam(const SlamConfig& config, const DenseProducts& products)
     : pipeline_(config) {
   // The odometry is as much "at the scan's time" as the orientation: the same tolerance.
-  if (config.icp.motion_prior == MotionPrior::Odometry) odometry_.emplace(config.imu.max_gap);
+  if (config.icp.motion_prior == MotionPrior::Odometry) {
+    odometry_.emplace(config.imu.max_gap, config.motion);
+  }
+  if (config.icp.motion_prior == MotionPrior::Imu)
+    inertial_.emplace(config.motion, config.imu.max_gap);
   if (products.cloud_voxel) cloud_ = std::make_unique<DenseCloud>(*products.cloud_voxel);
   if (products.occupancy) occupancy_ = std::make_unique<OccupancyOctree>(*products.occupancy);
+}
+
+void VehicleSlam::add_imu(const ImuSample& sample) {
+  pipeline_.add_imu(sample);
+  if (inertial_) inertial_->add(sample);
 }
 
 void VehicleSlam::add_odometry(const OdometrySample& sample) {
   if (odometry_) odometry_->add(sample);
 }
 
-// The ICP starts from the odometry's motion since the last posed scan (none without the prior:
+MotionPrediction VehicleSlam::predicted_motion(double stamp) {
+  if (odometry_) return odometry_->motion_to(stamp);
+  if (inertial_) return inertial_->motion_to(stamp, pipeline_.heading_correction());
+  return {};
+}
+
+void VehicleSlam::scan_posed(const ScanReport& report) {
+  if (odometry_) odometry_->scan_posed(report.pose.stamp, report.covariance);
+  if (inertial_) inertial_->scan_posed(report, pipeline_.heading_correction());
+}
+
+// The ICP starts from the motion prior's motion since the last posed scan (none without a prior:
 // the seed); a scan that got a pose is the next motion's start.
 VehicleScan VehicleSlam::process_scan(const Scan& scan) {
   VehicleScan result;
   const auto started = Clock::now();
-  const Vec3 predicted = odometry_ ? odometry_->motion_to(scan.stamp) : Vec3::Zero();
-  result.report = pipeline_.process_scan(scan, predicted);
-  if (odometry_ && result.posed()) odometry_->scan_posed(scan.stamp);
+  result.report = pipeline_.process_scan(scan, predicted_motion(scan.stamp));
+  if (result.posed()) scan_posed(result.report);
   result.pipeline_seconds = seconds_since(started);
   if (result.report.map_updated) result.keyframe = keyframe_of(scan, result.report);
   if (result.posed()) add_dense(scan, result.report, result.keyframe ? &*result.keyframe : nullptr);

@@ -1,8 +1,9 @@
 // One vehicle's SLAM, for every caller: the matcher process (slam_matcher), `uavslam run`,
 // `uavslam offline` and `uavslam simulate` all run this object and only move data in and out.
 // It owns the core's pipeline (SlamPipeline) and what goes around it:
-//   - the motion prior: with icp.motion_prior odometry, the odometry's motion since the last posed
-//     scan is the ICP's start (OdometryPrior);
+//   - the motion prior: the motion since the last posed scan that the ICP starts from and that
+//     carries the directions the scan cannot see: the odometry's (icp.motion_prior odometry,
+//     OdometryPrior) or the IMU's accelerations integrated (icp.motion_prior imu, InertialPrior);
 //   - the sensor's mount: where the scanner was when a keyframe was taken, the rays' origin;
 //   - the keyframe products: what each keyframe adds to the map, and, for the offline variant,
 //     the dense cloud of every posed scan and the occupancy octree of the keyframes.
@@ -18,6 +19,7 @@
 #include "core/SlamPipeline.hpp"
 #include "maps/DenseCloud.hpp"
 #include "maps/OccupancyOctree.hpp"
+#include "slam/InertialPrior.hpp"
 #include "slam/OdometryPrior.hpp"
 
 namespace uavslam {
@@ -54,7 +56,8 @@ class VehicleSlam {
   // Before the first scan; the origin when never called.
   void start_at(const Vec3& position) { pipeline_.start_at(position); }
 
-  void add_imu(const ImuSample& sample) { pipeline_.add_imu(sample); }
+  // The orientation source's samples; with icp.motion_prior imu, their specific force too.
+  void add_imu(const ImuSample& sample);
   // Wheel odometry for the motion prior; ignored unless icp.motion_prior is odometry. A
   // non-finite or out-of-order sample is dropped and counted (odometry_prior()->rejected()).
   void add_odometry(const OdometrySample& sample);
@@ -65,6 +68,8 @@ class VehicleSlam {
   const SlamConfig& config() const { return pipeline_.config(); }
   // Null unless icp.motion_prior is odometry.
   const OdometryPrior* odometry_prior() const { return odometry_ ? &*odometry_ : nullptr; }
+  // Null unless icp.motion_prior is imu.
+  const InertialPrior* inertial_prior() const { return inertial_ ? &*inertial_ : nullptr; }
   std::size_t keyframes() const { return keyframes_; }
 
   // The dense products (null when not asked for), and the seconds spent building them.
@@ -76,11 +81,14 @@ class VehicleSlam {
   double occupancy_seconds() const { return occupancy_seconds_; }
 
  private:
+  MotionPrediction predicted_motion(double stamp);
+  void scan_posed(const ScanReport& report);
   Keyframe keyframe_of(const Scan& scan, ScanReport& report);
   void add_dense(const Scan& scan, const ScanReport& report, const Keyframe* keyframe);
 
   SlamPipeline pipeline_;
   std::optional<OdometryPrior> odometry_;
+  std::optional<InertialPrior> inertial_;
   std::unique_ptr<DenseCloud> cloud_;
   std::unique_ptr<OccupancyOctree> occupancy_;
   std::size_t keyframes_ = 0;

@@ -109,7 +109,8 @@ TEST_F(PipelineInRoom, AMotionPriorStartsTheMatcherWhereTheVehicleWent) {
     slam.add_imu(level_imu(0.0));
     slam.add_imu(level_imu(0.1));
     EXPECT_TRUE(slam.process_scan(room.scan_at(pose_at(start, 0.0), 0.0)).accepted());
-    return slam.process_scan(room.scan_at(pose_at(moved, 0.1), 0.1), predicted_motion);
+    return slam.process_scan(room.scan_at(pose_at(moved, 0.1), 0.1),
+                             MotionPrediction{predicted_motion, std::nullopt});
   };
 
   // The seed: no prior, the ICP starts from the last position and does not reach the scan.
@@ -147,8 +148,9 @@ class HeadingBias : public PipelineInRoom {
       ImuSample imu = level_imu(t);
       imu.orientation = Eigen::AngleAxisd(k == 0 ? 0.0 : kBias, Vec3::UnitZ());
       slam.add_imu(imu);
-      const ScanReport r = slam.process_scan(room.scan_at(pose_at(truth, t), t),
-                                             k == 0 ? Vec3::Zero() : Vec3(0.05, 0, 0));
+      const ScanReport r =
+          slam.process_scan(room.scan_at(pose_at(truth, t), t),
+                            {k == 0 ? Vec3::Zero() : Vec3(0.05, 0, 0), std::nullopt});
       EXPECT_TRUE(r.accepted() || r.dead_reckoned) << "scan " << k << ": " << to_string(r.outcome);
       run.corrections.push_back(slam.heading_correction());
       run.last_position_error = (r.pose.position - truth).head<2>().norm();
@@ -208,8 +210,8 @@ TEST_F(PipelineInRoom, ARejectedScanWithAPriorIsDeadReckoned) {
   slam.add_imu(level_imu(0.0));
   slam.add_imu(level_imu(0.1));
   ASSERT_TRUE(slam.process_scan(room.scan_at(pose_at(start, 0.0), 0.0)).accepted());
-  const ScanReport r =
-      slam.process_scan(room.scan_at(pose_at(start + Vec3(0.2, 0, 0), 0.1), 0.1), Vec3(0.2, 0, 0));
+  const ScanReport r = slam.process_scan(room.scan_at(pose_at(start + Vec3(0.2, 0, 0), 0.1), 0.1),
+                                         {Vec3(0.2, 0, 0), std::nullopt});
   EXPECT_EQ(r.outcome, ScanOutcome::ErrorTooLarge);
   EXPECT_TRUE(r.dead_reckoned);
   EXPECT_TRUE(r.pose.position.isApprox(start + Vec3(0.2, 0, 0)));

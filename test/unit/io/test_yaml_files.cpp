@@ -300,11 +300,29 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.map.keyframe_height, defaults.map.keyframe_height);
   EXPECT_EQ(config.map.keyframe_lateral, defaults.map.keyframe_lateral);
   EXPECT_EQ(config.imu.max_gap, defaults.imu.max_gap);
+  EXPECT_EQ(config.degeneracy.threshold, defaults.degeneracy.threshold);
+  EXPECT_EQ(config.degeneracy.min_sigma, defaults.degeneracy.min_sigma);
+  EXPECT_EQ(config.motion.accel_noise_density, defaults.motion.accel_noise_density);
+  EXPECT_EQ(config.motion.accel_bias_walk, defaults.motion.accel_bias_walk);
+  EXPECT_EQ(config.motion.initial_speed_sigma, defaults.motion.initial_speed_sigma);
+  EXPECT_EQ(config.motion.initial_bias_sigma, defaults.motion.initial_bias_sigma);
+  EXPECT_EQ(config.motion.odometry_noise_per_metre, defaults.motion.odometry_noise_per_metre);
+  EXPECT_EQ(config.motion.odometry_noise_floor, defaults.motion.odometry_noise_floor);
 }
 
-TEST(SlamConfigFile, ShippedConfigHoldsTheDefaults) {
+TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
   expect_default_slam_config(
-      load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml"));
+      load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/seed.yaml"));
+}
+
+// The UAV's configuration is the seed's plus the motion model and the degeneracy analysis.
+TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheImuPriorAndDegeneracy) {
+  SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
+  EXPECT_EQ(config.icp.motion_prior, MotionPrior::Imu);
+  EXPECT_GT(config.degeneracy.threshold, 0.0);
+  config.icp.motion_prior = SlamConfig{}.icp.motion_prior;
+  config.degeneracy.threshold = SlamConfig{}.degeneracy.threshold;
+  expect_default_slam_config(config);
 }
 
 TEST_F(YamlFileTest, EmptySlamConfigHoldsTheDefaults) {
@@ -333,8 +351,24 @@ icp:
 nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
 map: {keyframe_height: 0.1, keyframe_lateral: 0.25, keyframe_rotation: 0.3, min_point_spacing: 0.03}
 imu: {max_gap: 0.02}
+degeneracy: {threshold: 0.04, min_sigma: 0.02}
+motion:
+  accel_noise_density: 0.01
+  accel_bias_walk: 0.001
+  initial_speed_sigma: 0.5
+  initial_bias_sigma: 0.2
+  odometry_noise_per_metre: 0.05
+  odometry_noise_floor: 0.003
 )");
   const SlamConfig c = load_slam_config(path);
+  EXPECT_EQ(c.degeneracy.threshold, 0.04);
+  EXPECT_EQ(c.degeneracy.min_sigma, 0.02);
+  EXPECT_EQ(c.motion.accel_noise_density, 0.01);
+  EXPECT_EQ(c.motion.accel_bias_walk, 0.001);
+  EXPECT_EQ(c.motion.initial_speed_sigma, 0.5);
+  EXPECT_EQ(c.motion.initial_bias_sigma, 0.2);
+  EXPECT_EQ(c.motion.odometry_noise_per_metre, 0.05);
+  EXPECT_EQ(c.motion.odometry_noise_floor, 0.003);
   EXPECT_EQ(c.scan.subsample_every, 1);
   EXPECT_EQ(c.icp.iterations, 20);
   EXPECT_EQ(c.icp.max_translation, 0.5);

@@ -1,0 +1,90 @@
+#include "core/extensions/ScanInformation.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace uavslam {
+namespace {
+
+// The pairs' mean squared residual along their normals, at least min_sigma^2.
+double residual_variance(const Correspondences& pairs, double min_sigma) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
+    const Vec3& n = pairs.scan_normals[i];
+    if (n.isZero() || pairs.weights[i].x() <= 0.0) continue;
+    const double along = n.head<2>().dot((pairs.scan[i] - pairs.map[i]).head<2>());
+    sum += along * along;
+    ++count;
+  }
+  const double variance = count > 0 ? sum / double(count) : 0.0;
+  return std::max(variance, min_sigma * min_sigma);
+}
+
+}  // namespace
+
+ScanInformation scan_information(const Correspondences& pairs, const Vec3& body, bool with_yaw,
+                                 double min_sigma) {
+  ScanInformation info;
+  if (pairs.scan_normals.size() != pairs.scan.size()) return info;
+  const double variance = residual_variance(pairs, min_sigma);
+  info.sigma = std::sqrt(variance);
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();  // over (t_x, t_y, yaw)
+  double vertical = 0.0;
+  for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
+    const Vec3& w = pairs.weights[i];
+    const Vec3& n = pairs.scan_normals[i];
+    if (w.z() > 0.0) {
+      vertical += w.z();
+      ++info.vertical_pairs;
+    }
+    if (w.x() <= 0.0 || n.isZero()) continue;
+    const Vec3 q = pairs.scan[i] - body;
+    const Vec3 J(n.x(), n.y(), -n.x() * q.y() + n.y() * q.x());
+    H.noalias() += w.x() * J * J.transpose();
+    ++info.horizontal_pairs;
+  }
+  Eigen::Matrix2d translation = H.topLeftCorner<2, 2>();
+  if (with_yaw && H(2, 2) > 0.0) {
+    translation -= H.topRightCorner<2, 1>() * H.bottomLeftCorner<1, 2>() / H(2, 2);
+  }
+  info.translation.topLeftCorner<2, 2>() = translation / variance;
+  info.translation(2, 2) = vertical / variance;
+  return info;
+}
+
+Observability observability(const ScanInformation& information, double threshold,
+                            bool measures_height) {
+  Observability result;
+  const double variance = information.sigma * information.sigma;
+  const double pairs = double(information.horizontal_pairs);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(
+      information.translation.topLeftCorner<2, 2>());
+  result.observed.setZero();
+  for (int k = 0; k < 2; ++k) {
+    const double value = solver.eigenvalues()[k];  // ascending
+    const Eigen::Vector2d e = solver.eigenvectors().col(k);
+    const double fraction = pairs > 0.0 ? value * variance / pairs : 0.0;
+    if (k == 0) {
+      result.weakest = Vec3(e.x(), e.y(), 0.0);
+      result.weakest_fraction = fraction;
+    }
+    if (fraction < threshold) {
+      ++result.degenerate;
+      continue;
+    }
+    result.observed.topLeftCorner<2, 2>() += e * e.transpose();
+    result.covariance.topLeftCorner<2, 2>() += e * e.transpose() / value;
+  }
+  const double vertical = information.translation(2, 2);
+  if (vertical > 0.0 && information.vertical_pairs > 0) {
+    result.observed(2, 2) = 1.0;
+    result.covariance(2, 2) = 1.0 / vertical;
+  } else if (measures_height) {
+    ++result.degenerate;
+  }
+  return result;
+}
+
+}  // namespace uavslam

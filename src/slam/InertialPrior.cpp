@@ -1,0 +1,161 @@
+#include "slam/InertialPrior.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "core/Heading.hpp"
+
+namespace uavslam {
+namespace {
+
+constexpr double kGravity = 9.80665;  // m/s^2, standard; the z bias takes up the local difference
+// m; the spread given to a matched position when the scan's analysis gave none (degeneracy off).
+constexpr double kDefaultScanSigma = 0.01;
+
+bool is_finite(const ImuSample& s) {
+  return std::isfinite(s.stamp) && s.orientation.coeffs().allFinite() &&
+         s.linear_acceleration.allFinite();
+}
+
+Eigen::Matrix3d map_rotation(const ImuSample& sample, double heading_correction) {
+  return (yaw_rotation(heading_correction) * sample.orientation.normalized()).toRotationMatrix();
+}
+
+}  // namespace
+
+InertialPrior::InertialPrior(const SlamConfig::Motion& noise, double max_gap)
+    : noise_(noise), max_gap_(max_gap) {}
+
+bool InertialPrior::add(const ImuSample& sample) {
+  const bool in_order = samples_.empty() || sample.stamp > samples_.back().stamp;
+  if (!is_finite(sample) || !in_order || sample.linear_acceleration.isZero()) {
+    ++rejected_;
+    return false;
+  }
+  samples_.push_back(sample);
+  return true;
+}
+
+// One sample held for dt: the mean and covariance through the equations above.
+void InertialPrior::integrate(State& s, const ImuSample& sample, double dt,
+                              double heading_correction) const {
+  if (dt <= 0.0) return;
+  const Eigen::Matrix3d R = map_rotation(sample, heading_correction);
+  const Vec3 a = R * (sample.linear_acceleration - s.x.segment<3>(6)) - kGravity * Vec3::UnitZ();
+  s.x.segment<3>(0) += s.x.segment<3>(3) * dt + 0.5 * a * dt * dt;
+  s.x.segment<3>(3) += a * dt;
+  StateMatrix F = StateMatrix::Identity();
+  F.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity() * dt;
+  F.block<3, 3>(0, 6) = -0.5 * R * dt * dt;
+  F.block<3, 3>(3, 6) = -R * dt;
+  s.P = F * s.P * F.transpose();
+  const double accel = noise_.accel_noise_density * noise_.accel_noise_density * dt;
+  const double walk = noise_.accel_bias_walk * noise_.accel_bias_walk * dt;
+  s.P.block<3, 3>(3, 3).diagonal().array() += accel;
+  s.P.block<3, 3>(6, 6).diagonal().array() += walk;
+  s.stamp += dt;
+}
+
+// The state at the last posed scan carried to t through the samples since, each held until the
+// next; none across a gap of more than max_gap without a sample.
+std::optional<InertialPrior::State> InertialPrior::propagated(double t,
+                                                              double heading_correction) const {
+  if (!state_ || samples_.empty()) return std::nullopt;
+  State s = *state_;
+  auto next = std::upper_bound(samples_.begin(), samples_.end(), s.stamp,
+                               [](double stamp, const ImuSample& x) { return stamp < x.stamp; });
+  const ImuSample* held = next == samples_.begin() ? &*next : &*std::prev(next);
+  while (s.stamp < t) {
+    const double until = next != samples_.end() && next->stamp < t ? next->stamp : t;
+    if (until - held->stamp > max_gap_ || held->stamp - s.stamp > max_gap_) return std::nullopt;
+    integrate(s, *held, until - s.stamp, heading_correction);
+    s.stamp = until;
+    if (next != samples_.end() && next->stamp <= s.stamp) held = &*next++;
+  }
+  return s;
+}
+
+MotionPrediction InertialPrior::motion_to(double t, double heading_correction) {
+  const std::optional<State> s = propagated(t, heading_correction);
+  if (!s) {
+    ++without_prior_;
+    return {};
+  }
+  ++with_prior_;
+  // The pipeline turns the prediction by the heading correction: hand it back unturned.
+  const Eigen::Matrix3d back = yaw_rotation(-heading_correction).toRotationMatrix();
+  MotionPrediction prediction;
+  prediction.motion = back * (s->x.segment<3>(0) - state_->x.segment<3>(0));
+  prediction.covariance = back * s->P.block<3, 3>(0, 0) * back.transpose();
+  return prediction;
+}
+
+void InertialPrior::start(const ScanReport& report) {
+  State s;
+  s.stamp = report.pose.stamp;
+  s.x.segment<3>(0) = report.pose.position;
+  s.P.block<3, 3>(0, 0) = report.covariance;
+  s.P.block<3, 3>(3, 3).diagonal().setConstant(noise_.initial_speed_sigma *
+                                               noise_.initial_speed_sigma);
+  s.P.block<3, 3>(6, 6).diagonal().setConstant(noise_.initial_bias_sigma *
+                                               noise_.initial_bias_sigma);
+  state_ = s;
+}
+
+// The matched position, measured along the directions the scan fixed.
+void InertialPrior::update(State& s, const ScanReport& report) const {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> split(report.seen.observed);
+  std::vector<int> fixed;
+  for (int k = 0; k < 3; ++k) {
+    if (split.eigenvalues()[k] > 0.5) fixed.push_back(k);
+  }
+  if (fixed.empty()) return;
+  const int m = int(fixed.size());
+  Eigen::MatrixXd E(3, m);
+  for (int j = 0; j < m; ++j) E.col(j) = split.eigenvectors().col(fixed[j]);
+  Eigen::Matrix3d scan = report.seen.covariance;
+  if (scan.isZero()) scan = kDefaultScanSigma * kDefaultScanSigma * Eigen::Matrix3d::Identity();
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, 9);
+  H.leftCols<3>() = E.transpose();
+  const Eigen::MatrixXd Rz = E.transpose() * scan * E;
+  const Eigen::VectorXd innovation = E.transpose() * (report.pose.position - s.x.segment<3>(0));
+  const Eigen::MatrixXd S = H * s.P * H.transpose() + Rz;
+  // The gain is kept out of the blind directions (a Schmidt, "consider", update): what the scan
+  // measured along a direction tilted from a blind one by noise in the normals is no measurement
+  // of the blind one, however sure the scan is and however unsure the state is there.
+  const Eigen::Matrix3d seen = report.seen.observed;
+  const Eigen::Matrix3d body = report.pose.orientation.toRotationMatrix();
+  StateMatrix keep = StateMatrix::Zero();
+  keep.block<3, 3>(0, 0) = seen;
+  keep.block<3, 3>(3, 3) = seen;
+  keep.block<3, 3>(6, 6) = body.transpose() * seen * body;
+  const Eigen::MatrixXd K = keep * s.P * H.transpose() * S.inverse();
+  s.x += K * innovation;
+  // Joseph form: right for any gain, and stays symmetric and positive however small Rz is.
+  const StateMatrix IKH = StateMatrix::Identity() - K * H;
+  s.P = IKH * s.P * IKH.transpose() + K * Rz * K.transpose();
+}
+
+void InertialPrior::scan_posed(const ScanReport& report, double heading_correction) {
+  const double t = report.pose.stamp;
+  std::optional<State> s = state_ ? propagated(t, heading_correction) : std::nullopt;
+  if (!s) {
+    start(report);
+  } else {
+    if (report.accepted()) update(*s, report);
+    state_ = s;
+  }
+  // The sample held at t stays: the next interval starts with it.
+  while (samples_.size() > 1 && samples_[1].stamp <= t) samples_.pop_front();
+}
+
+Vec3 InertialPrior::velocity() const {
+  return state_ ? Vec3(state_->x.segment<3>(3)) : Vec3::Zero();
+}
+
+Vec3 InertialPrior::bias() const {
+  return state_ ? Vec3(state_->x.segment<3>(6)) : Vec3::Zero();
+}
+
+}  // namespace uavslam

@@ -1,0 +1,72 @@
+// The motion prior from the IMU's accelerations (icp.motion_prior: imu): between scans, the
+// specific force is integrated in the map frame (a strapdown INS, zero-order hold per sample), and
+// each matched pose corrects it, in the directions the scan fixed, through a linear Kalman filter
+// over position, velocity and the accelerometer's bias (FAST-LIO and LIO-SAM carry the motion the
+// same way; their filters also hold the attitude, which here the orientation source gives):
+//   a  = R (f - b) - g                   f: specific force (body), R: orientation (heading-
+//                                        corrected), g = (0, 0, 9.80665): the bias absorbs any
+//                                        local difference of gravity
+//   p' = p + v dt + a dt^2 / 2,   v' = v + a dt,   b' = b + bias walk
+//   F  = [I  I dt  -R dt^2/2;  0  I  -R dt;  0  0  I],  Q = diag(0, s_a^2 dt I, s_b^2 dt I)
+// Update at a matched scan: z = E^T p_scan, H = E^T [I 0 0], R_z = E^T Sigma_scan E, where the
+// columns of E span the directions the scan fixed (ScanReport::seen): a blind direction neither
+// corrects the state nor is corrected by it. So the bias and velocity are estimated from the
+// matched poses wherever the walls allow, and carry the vehicle through where they do not.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <optional>
+
+#include "core/MotionPrediction.hpp"
+#include "core/SlamConfig.hpp"
+#include "core/SlamPipeline.hpp"
+
+namespace uavslam {
+
+class InertialPrior {
+ public:
+  // max_gap: a scan whose time is farther than this from the last IMU sample gets no prediction.
+  InertialPrior(const SlamConfig::Motion& noise, double max_gap);
+
+  // False (counted in rejected()) for a non-finite or out-of-order sample, or one without a
+  // specific force (a source that gives only the attitude, e.g. a 2D log's odometry heading).
+  bool add(const ImuSample& sample);
+
+  // The motion from the last posed scan to the scan stamped t, in the orientation source's frame
+  // (heading_correction: what the matcher has added to the source's heading), with the predicted
+  // position's covariance. None before the first posed scan or across a gap in the samples.
+  MotionPrediction motion_to(double t, double heading_correction);
+  // The scan got a pose: the filter moves to it and, if the scan was matched, takes its position.
+  void scan_posed(const ScanReport& report, double heading_correction);
+
+  std::size_t scans_with_prior() const { return with_prior_; }
+  std::size_t scans_without_prior() const { return without_prior_; }
+  std::size_t rejected() const { return rejected_; }
+  Vec3 velocity() const;  // m/s in the map frame (zero before the first posed scan)
+  Vec3 bias() const;      // m/s^2 in the body frame
+
+ private:
+  using StateVector = Eigen::Matrix<double, 9, 1>;  // p, v, b
+  using StateMatrix = Eigen::Matrix<double, 9, 9>;
+  struct State {
+    double stamp = 0.0;
+    StateVector x = StateVector::Zero();
+    StateMatrix P = StateMatrix::Zero();
+  };
+
+  std::optional<State> propagated(double t, double heading_correction) const;
+  void integrate(State& state, const ImuSample& sample, double dt, double heading_correction) const;
+  void update(State& state, const ScanReport& report) const;
+  void start(const ScanReport& report);
+
+  SlamConfig::Motion noise_;
+  double max_gap_;
+  std::deque<ImuSample> samples_;
+  std::optional<State> state_;  // at the last posed scan
+  std::size_t with_prior_ = 0;
+  std::size_t without_prior_ = 0;
+  std::size_t rejected_ = 0;
+};
+
+}  // namespace uavslam

@@ -1,0 +1,150 @@
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "sim/ImuSimulator.hpp"
+#include "sim/Trajectory.hpp"
+#include "slam/InertialPrior.hpp"
+
+namespace uavslam {
+namespace {
+
+constexpr double kScanPeriod = 0.025;  // s, 40 Hz
+constexpr double kImuPeriod = 0.005;   // s, 200 Hz
+
+// A flight that speeds up, turns and climbs: from rest at (0, 0, 1) to (6, 3, 1.8) in 6 s.
+sim::Trajectory flight() {
+  return sim::Trajectory(
+      {{0.0, Vec3(0, 0, 1), 0.0}, {3.0, Vec3(2.5, 0.5, 1.2), 30.0}, {6.0, Vec3(6, 3, 1.8), 60.0}});
+}
+
+sim::ImuSpec noiseless() {
+  sim::ImuSpec spec;
+  spec.orientation_noise_std_deg = 0.0;
+  spec.gyro_noise_std = 0.0;
+  spec.accel_noise_std = 0.0;
+  return spec;
+}
+
+// A scan's report at the true pose: matched, seeing `observed` of it.
+ScanReport report_at(const sim::Trajectory& trajectory, double t,
+                     const Eigen::Matrix3d& observed = Eigen::Matrix3d::Identity(),
+                     const Vec3& error = Vec3::Zero()) {
+  ScanReport r;
+  r.outcome = ScanOutcome::Accepted;
+  r.pose = trajectory.pose_at(t);
+  r.pose.position += error;
+  r.seen.observed = observed;
+  r.seen.covariance = 1e-6 * observed;
+  r.covariance = r.seen.covariance;
+  return r;
+}
+
+struct Flight {
+  sim::Trajectory trajectory = flight();
+  sim::ImuSimulator imu{noiseless(), 1};
+  InertialPrior prior{SlamConfig::Motion{}, 0.1};
+  double fed_until = -1.0;
+  Vec3 bias = Vec3::Zero();  // added to every sample's specific force
+
+  void feed_to(double t) {
+    for (double s = fed_until + kImuPeriod; s <= t + 1e-9; s += kImuPeriod) {
+      ImuSample sample = imu.sample_at(trajectory, std::max(s, 0.0));
+      sample.linear_acceleration += bias;
+      prior.add(sample);
+      fed_until = s;
+    }
+  }
+};
+
+// Preintegration: the specific force, turned by the attitude, less gravity, integrated twice from
+// the first pose, gives the true motion.
+TEST(InertialPrior, IntegratesTheSimulatorsTrueMotion) {
+  Flight f;
+  f.fed_until = -kImuPeriod;
+  f.feed_to(0.0);
+  EXPECT_FALSE(f.prior.motion_to(0.0, 0.0).covariance) << "nothing posed yet";
+  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
+  f.feed_to(3.0);
+  const MotionPrediction p = f.prior.motion_to(3.0, 0.0);
+  ASSERT_TRUE(p.covariance);
+  const Vec3 truth = f.trajectory.pose_at(3.0).position - f.trajectory.pose_at(0.0).position;
+  EXPECT_LT((p.motion - truth).norm(), 0.01) << p.motion.transpose() << " vs " << truth.transpose();
+  EXPECT_GT((*p.covariance)(0, 0), 0.0);
+}
+
+// A bias the filter did not know of is found from the matched poses, and the velocity with it.
+TEST(InertialPrior, MatchedPosesEstimateTheBiasAndTheVelocity) {
+  Flight f;
+  f.bias = Vec3(0.05, -0.03, 0.08);
+  f.fed_until = -kImuPeriod;
+  f.feed_to(0.0);
+  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
+  for (double t = kScanPeriod; t <= 6.0 + 1e-9; t += kScanPeriod) {
+    f.feed_to(t);
+    f.prior.motion_to(t, 0.0);
+    f.prior.scan_posed(report_at(f.trajectory, t), 0.0);
+  }
+  EXPECT_LT((f.prior.bias() - f.bias).norm(), 0.01) << f.prior.bias().transpose();
+  EXPECT_LT((f.prior.velocity() - f.trajectory.velocity_at(6.0)).norm(), 0.01);
+}
+
+// A matched pose says nothing of a direction the scan could not see: a 1 m error along it does not
+// pull the state, which stays with the integrated motion.
+TEST(InertialPrior, ABlindDirectionIsNeitherMeasuredNorPulled) {
+  Flight f;
+  f.fed_until = -kImuPeriod;
+  f.feed_to(0.0);
+  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
+  const Eigen::Matrix3d blind_x = Eigen::Vector3d(0, 1, 1).asDiagonal();
+  for (double t = kScanPeriod; t <= 3.0 + 1e-9; t += kScanPeriod) {
+    f.feed_to(t);
+    f.prior.motion_to(t, 0.0);
+    f.prior.scan_posed(report_at(f.trajectory, t, blind_x, Vec3(1.0, 0, 0)), 0.0);
+  }
+  f.feed_to(3.0 + kScanPeriod);
+  const MotionPrediction p = f.prior.motion_to(3.0 + kScanPeriod, 0.0);
+  ASSERT_TRUE(p.covariance);
+  // The step predicted from 3.0 matches the truth: the velocity along x was not pulled by the
+  // wrong x, and the uncertainty along x has grown while that along y stayed small.
+  const Vec3 truth =
+      f.trajectory.pose_at(3.0 + kScanPeriod).position - f.trajectory.pose_at(3.0).position;
+  EXPECT_LT(std::abs(p.motion.x() - truth.x()), 0.002);
+  EXPECT_GT((*p.covariance)(0, 0), 100.0 * (*p.covariance)(1, 1));
+}
+
+TEST(InertialPrior, RefusesSamplesItCannotIntegrate) {
+  InertialPrior prior(SlamConfig::Motion{}, 0.1);
+  ImuSample good;
+  good.stamp = 1.0;
+  good.linear_acceleration = Vec3(0, 0, 9.8);
+  EXPECT_TRUE(prior.add(good));
+  ImuSample attitude_only = good;
+  attitude_only.stamp = 1.1;
+  attitude_only.linear_acceleration = Vec3::Zero();
+  EXPECT_FALSE(prior.add(attitude_only)) << "a source without an accelerometer";
+  ImuSample late = good;
+  late.stamp = 0.9;
+  EXPECT_FALSE(prior.add(late));
+  ImuSample broken = good;
+  broken.stamp = 1.2;
+  broken.linear_acceleration.x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(prior.add(broken));
+  EXPECT_EQ(prior.rejected(), 3u);
+}
+
+// A gap in the samples longer than max_gap: no prediction rather than one from a stale sample.
+TEST(InertialPrior, GivesNoPredictionAcrossAGapInTheSamples) {
+  Flight f;
+  f.fed_until = -kImuPeriod;
+  f.feed_to(0.0);
+  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
+  const MotionPrediction p = f.prior.motion_to(0.5, 0.0);
+  EXPECT_FALSE(p.covariance);
+  EXPECT_EQ(p.motion, Vec3::Zero());
+  EXPECT_EQ(f.prior.scans_without_prior(), 1u);
+}
+
+}  // namespace
+}  // namespace uavslam
