@@ -11,8 +11,8 @@ namespace uavslam {
 
 struct MotionPrediction {
   Vec3 motion = Vec3::Zero();  // m, in the frame of the orientation source
-  // m^2; the motion's uncertainty, and the pose's since the previous posed scan. None: the source
-  // gives no uncertainty (a directions the scan cannot see then keeps the motion as it is).
+  // m^2; the covariance of the predicted position (the last pose moved by the motion). None: the source
+  // gives no uncertainty (the pipeline then grows the last pose's by recovery.max_speed).
   std::optional<Eigen::Matrix3d> covariance;
 };
 

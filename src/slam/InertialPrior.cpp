@@ -54,7 +54,6 @@ void InertialPrior::integrate(State& s, const ImuSample& sample, double dt,
   const double walk = noise_.accel_bias_walk * noise_.accel_bias_walk * dt;
   s.P.block<3, 3>(3, 3).diagonal().array() += accel;
   s.P.block<3, 3>(6, 6).diagonal().array() += walk;
-  s.stamp += dt;
 }
 
 // The state at the last posed scan carried to t through the samples since, each held until the
