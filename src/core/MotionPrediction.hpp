@@ -11,8 +11,8 @@ namespace uavslam {
 
 struct MotionPrediction {
   Vec3 motion = Vec3::Zero();  // m, in the frame of the orientation source
-  // m^2; the covariance of the predicted position (the last pose moved by the motion). None: the source
-  // gives no uncertainty (the pipeline then grows the last pose's by recovery.max_speed).
+  // m^2; the covariance of the predicted position (the last pose moved by the motion). None: the
+  // source gives no uncertainty (the pipeline then grows the last pose's by recovery.max_speed).
   std::optional<Eigen::Matrix3d> covariance;
 };
 
