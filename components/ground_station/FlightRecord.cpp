@@ -120,6 +120,8 @@ std::string FlightRecord::status_line() {
   if (statuses_ == 0) {
     line += ", no matcher status yet";
   } else {
+    line += ", " + counters_.tracking;
+    if (!counters_.tracking_reason.empty()) line += " (" + counters_.tracking_reason + ")";
     line += ", accepted " + std::to_string(counters_.scans_accepted) + " rejected " +
             std::to_string(counters_.scans_rejected) + " skipped " +
             std::to_string(counters_.scans_skipped);
@@ -154,7 +156,9 @@ nlohmann::json FlightRecord::summary() const {
                             {"scans_skipped", counters_.scans_skipped},
                             {"scans_rejected", counters_.scans_rejected},
                             {"scans_accepted", counters_.scans_accepted},
-                            {"last_outcome", counters_.last_outcome}};
+                            {"last_outcome", counters_.last_outcome},
+                            {"last_tracking", counters_.tracking},
+                            {"last_tracking_reason", counters_.tracking_reason}};
   json["map"] = {{"snapshots_received", maps_},
                  {"malformed", malformed_maps_},
                  {"last_map_seq", maps_ > 0 ? nlohmann::json(map_info_.map_seq) : nlohmann::json()},

@@ -26,6 +26,8 @@ struct MatcherCounters {
   std::uint64_t scans_rejected = 0;
   std::uint64_t scans_accepted = 0;
   std::string last_outcome;
+  std::string tracking;  // "tracking", "degraded" or "lost"
+  std::string tracking_reason;
 };
 
 // What a map snapshot says about itself.
@@ -50,8 +52,9 @@ class FlightRecord {
   void set_map(std::shared_ptr<const octomap::OcTree> tree, const MapSnapshotInfo& info);
   void add_malformed_map();
 
-  // "gcs: 39.8 Hz pose, latency p50 0.9 ms p99 2.1 ms, accepted 1234 rejected 3 skipped 0, map
-  // 54000 pts / 3120 occupied cells (snapshot 12)": rate and latency since the previous call.
+  // "gcs: 39.8 Hz pose, latency p50 0.9 ms p99 2.1 ms, degraded (degenerate), accepted 1234
+  // rejected 3 skipped 0, map 54000 pts / 3120 occupied cells (snapshot 12)": rate and latency
+  // since the previous call, the matcher's latest tracking state.
   std::string status_line();
 
   // Totals for summary.json; `files` lists what write_outputs wrote.

@@ -66,6 +66,8 @@ ground_station::MatcherCounters counters_of(const msg::MatcherStatus& m) {
   c.scans_rejected = m.scans_rejected();
   c.scans_accepted = m.scans_accepted();
   c.last_outcome = m.outcome();
+  c.tracking = m.tracking();
+  c.tracking_reason = m.tracking_reason();
   return c;
 }
 

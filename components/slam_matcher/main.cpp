@@ -137,7 +137,8 @@ class MatcherNode {
     for (const ImuSample& sample : work.imu) slam_.add_imu(sample);
     for (const OdometrySample& sample : work.odometry) slam_.add_odometry(sample);
     const Scan scan = dds::from_msg(work.scan.message, geometry_for(work.scan.message));
-    const VehicleScan result = slam_.process_scan(scan);
+    const std::uint64_t skipped = queue_.scans_skipped();
+    const VehicleScan result = slam_.process_scan(scan, skipped - counts_.skipped);
     const dds::Source source{"map", vehicle_};
     if (result.report.accepted()) {
       pose_.write(dds::pose_message(result.report, slam_.config(), scan.sequence,
@@ -146,10 +147,9 @@ class MatcherNode {
     if (result.keyframe) map_points_.write(dds::keyframe_message(*result.keyframe, source));
     counts_.rejected += !result.report.accepted();
     counts_.received = queue_.scans_received();
-    counts_.skipped = queue_.scans_skipped();
-    status_.write(dds::status_message(result.report, scan, result.pipeline_seconds * 1e3,
-                                      (wall_seconds() - work.scan.published_at) * 1e3, counts_,
-                                      statuses_++, source));
+    counts_.skipped = skipped;
+    status_.write(dds::status_message(result, scan, (wall_seconds() - work.scan.published_at) * 1e3,
+                                      counts_, statuses_++, source));
   }
 
   // The sensor file's geometry, or the scan's own layout (said once when it differs).
@@ -235,7 +235,8 @@ int main(int argc, char** argv) {
                  "(config/sensors/*.yaml) or a scenario file")
       ->capture_default_str();
   app.add_option("--slam-config", options.slam_config,
-                 "SLAM parameters YAML (default: the built-in defaults, as config/slam.yaml); "
+                 "SLAM parameters YAML (default: the built-in defaults: the seed, as "
+                 "config/seed.yaml; the UAV runs config/slam.yaml); "
                  "with icp.motion_prior: odometry (config/slam_2d_logs.yaml) the matcher also "
                  "subscribes odom and starts each ICP from the odometry's motion since the last "
                  "scan that got a pose");

@@ -125,7 +125,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", options->out, "output folder (created)")->required();
   add_slam_config_options(*cmd, options->config, options->overrides,
                           "SLAM parameters YAML (e.g. config/slam_2d_logs.yaml; default: the "
-                          "built-in defaults, as in config/slam.yaml)");
+                          "built-in defaults: the seed, as in config/seed.yaml)");
   cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
   cmd->add_option("--heading-jitter", options->jitter.amplitude,
                   "robustness probe: add a pseudo-random heading offset, uniform in +-RAD, to each "

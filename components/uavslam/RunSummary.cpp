@@ -77,6 +77,23 @@ nlohmann::json rejected_by_reason(const OutcomeCounts& outcomes) {
   return rejected;
 }
 
+// "  tracking          7100 tracking, 80 degraded (degenerate 80), 0 lost"
+void print_tracking(std::ostream& out, const SlamRun& run) {
+  out << "  tracking          ";
+  for (std::size_t k = 0; k < run.tracking.size(); ++k) {
+    const std::string state = to_string(Tracking(k));
+    out << (k > 0 ? ", " : "") << run.tracking[k] << ' ' << state;
+    std::string separator = " (";
+    for (const auto& [key, count] : run.tracking_reasons) {
+      if (key.rfind(state + ": ", 0) != 0) continue;
+      out << separator << key.substr(state.size() + 2) << ' ' << count;
+      separator = ", ";
+    }
+    if (separator == ", ") out << ')';
+  }
+  out << '\n';
+}
+
 void print_summary(std::ostream& out, const RunSummary& s) {
   const SlamRun& run = *s.run;
   out << "uavslam simulate: " << s.scenario << (run.stopped_early ? " (stopped early)" : "")
@@ -84,10 +101,23 @@ void print_summary(std::ostream& out, const RunSummary& s) {
   print_scan_counts(out, run.scans_in, run.outcomes);
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
+  print_tracking(out, run);
   if (s.errors) {
     print_errors(out, *s.errors);
   } else {
     out << "  trajectory errors unavailable: " << s.errors_unavailable << "\n";
+  }
+  if (run.nees.empty()) {
+    out << "  consistency       no covariance reported (degeneracy.threshold 0)\n";
+  } else {
+    const eval::NeesSummary nees = eval::summarize(run.nees);
+    out << std::setprecision(2) << "  consistency       NEES mean " << nees.mean << " over "
+        << nees.count << " poses (a consistent covariance gives " << nees.mean_dimension << ")\n";
+  }
+  if (!run.prior_distances.empty()) {
+    const eval::SampleStats d = eval::summarize(run.prior_distances);
+    out << std::setprecision(2) << "  match vs prior    p50 " << d.p50 << ", p99 " << d.p99
+        << ", max " << d.max << " sigmas\n";
   }
   out << std::fixed << std::setprecision(3);
   out << "  matcher time      " << s.scan_ms.mean << " ms/scan mean, p99 " << s.scan_ms.p99
@@ -126,6 +156,19 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
                 {"rejected", run.scans_in - s.accepted()},
                 {"rejected_by_reason", rejected}};
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
+  j["tracking"] = {{"tracking", run.tracking[0]},
+                   {"degraded", run.tracking[1]},
+                   {"lost", run.tracking[2]},
+                   {"by_reason", run.tracking_reasons}};
+  if (!run.nees.empty()) {
+    const eval::NeesSummary nees = eval::summarize(run.nees);
+    j["consistency"] = {
+        {"nees_mean", nees.mean}, {"poses", nees.count}, {"state_dimension", nees.mean_dimension}};
+  }
+  if (!run.prior_distances.empty()) {
+    const eval::SampleStats d = eval::summarize(run.prior_distances);
+    j["match_vs_prior_sigmas"] = {{"p50", d.p50}, {"p99", d.p99}, {"max", d.max}};
+  }
   j["trajectory_errors"] = s.errors ? to_json(*s.errors) : nlohmann::json(s.errors_unavailable);
   j["matcher_ms_per_scan"] = {{"mean", s.scan_ms.mean},
                               {"p50", s.scan_ms.p50},

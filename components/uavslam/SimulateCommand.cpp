@@ -34,7 +34,8 @@ struct SimulateOptions {
 void write_trace(const std::string& path, const std::vector<ScanTrace>& trace) {
   std::ofstream csv(path);
   csv << "stamp,outcome,points,error_before,error_after,iterations,keyframe,x,y,z,true_x,true_y,"
-         "true_z,ms,degenerate,weakest_fraction,sigma_x,sigma_y,sigma_z\n";
+         "true_z,ms,degenerate,weakest_fraction,sigma_x,sigma_y,sigma_z,prior_distance,tracking,"
+         "tracking_reason,nees\n";
   for (const ScanTrace& t : trace) {
     csv << std::fixed << std::setprecision(4) << t.stamp << ',' << to_string(t.outcome) << ','
         << t.points_used << ',' << std::setprecision(6) << t.error_before << ',' << t.error_after
@@ -42,7 +43,10 @@ void write_trace(const std::string& path, const std::vector<ScanTrace>& trace) {
         << t.position.x() << ',' << t.position.y() << ',' << t.position.z() << ',' << t.truth.x()
         << ',' << t.truth.y() << ',' << t.truth.z() << ',' << t.milliseconds << ',' << t.degenerate
         << ',' << t.weakest_fraction << ',' << t.sigma.x() << ',' << t.sigma.y() << ','
-        << t.sigma.z() << '\n';
+        << t.sigma.z() << ',' << t.prior_distance << ',' << to_string(t.tracking.state) << ','
+        << to_string(t.tracking.reason) << ',';
+    if (t.nees) csv << t.nees->value;
+    csv << '\n';
   }
   if (!csv) throw io::file_error(path, "cannot write");
 }
@@ -101,7 +105,7 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", options->out, "output folder (created)")->required();
   add_slam_config_options(
       *cmd, options->config, options->overrides,
-      "SLAM parameters YAML (default: the built-in defaults, as in config/slam.yaml)");
+      "SLAM parameters YAML (default: the built-in defaults: the seed, as in config/seed.yaml)");
   cmd->add_option("--log", options->log,
                   "also write the flight's sensor data as an MCAP recording: channels scan, imu "
                   "and ground_truth, as the sensor processes publish them (replay it with "

@@ -80,6 +80,17 @@ void write_flight_log(const std::string& path, const sim::Scenario& scenario,
   writer.close();
 }
 
+namespace {
+
+void count_tracking(SlamRun& run, const TrackingStatus& tracking) {
+  ++run.tracking[static_cast<std::size_t>(tracking.state)];
+  if (tracking.state != Tracking::Tracking) {
+    ++run.tracking_reasons[to_string(tracking.state) + ": " + to_string(tracking.reason)];
+  }
+}
+
+}  // namespace
+
 SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
                  const std::function<void(std::size_t, std::size_t)>& progress) {
   using Clock = std::chrono::steady_clock;
@@ -104,15 +115,21 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
     const ScanReport& report = result.report;
     run.scan_seconds.push_back(result.pipeline_seconds);
     ++run.scans_in;
+    const Vec3& truth = log.ground_truth[i].position;
+    const std::optional<eval::Nees> nees =
+        eval::nees(report.pose.position - truth, report.covariance);
     if (report.accepted()) {
       run.estimate.push_back(report.pose);
       run.ground_truth.push_back(log.ground_truth[i]);
+      if (nees) run.nees.push_back(*nees);
+      if (report.prior_distance > 0.0) run.prior_distances.push_back(report.prior_distance);
     }
-    run.trace.push_back({scan.stamp, report.outcome, report.points_used, report.error_before,
-                         report.error_after, report.iterations, report.map_updated,
-                         report.pose.position, log.ground_truth[i].position,
-                         run.scan_seconds.back() * 1e3, report.seen.degenerate,
-                         report.seen.weakest_fraction, report.covariance.diagonal().cwiseSqrt()});
+    count_tracking(run, result.tracking);
+    run.trace.push_back(
+        {scan.stamp, report.outcome, report.points_used, report.error_before, report.error_after,
+         report.iterations, report.map_updated, report.pose.position, truth,
+         run.scan_seconds.back() * 1e3, report.seen.degenerate, report.seen.weakest_fraction,
+         report.covariance.diagonal().cwiseSqrt(), report.prior_distance, result.tracking, nees});
     if (progress && i % 400 == 0) progress(i, log.scans.size());
   }
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();

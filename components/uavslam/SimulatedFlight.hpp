@@ -5,11 +5,15 @@
 
 #include <array>
 #include <functional>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/SlamPipeline.hpp"
+#include "eval/Consistency.hpp"
 #include "sim/Scenario.hpp"
+#include "slam/TrackingMonitor.hpp"
 
 namespace uavslam::cli {
 
@@ -45,6 +49,9 @@ struct ScanTrace {
   int degenerate = 0;             // directions the scan could not see (degeneracy analysis)
   double weakest_fraction = 0.0;  // the information fraction of the weakest horizontal direction
   Vec3 sigma = Vec3::Zero();      // m; the reported position's standard deviation per axis
+  double prior_distance = 0.0;    // sigmas between the match and the motion prior's prediction
+  TrackingStatus tracking;
+  std::optional<eval::Nees> nees;  // of the reported position against the truth
 };
 
 struct SlamRun {
@@ -55,6 +62,11 @@ struct SlamRun {
   std::array<std::size_t, kScanOutcomeCount> outcomes{};
   std::size_t scans_in = 0;
   std::size_t keyframes = 0;
+  // Scans per tracking state, and per "state: reason" for those not tracking.
+  std::array<std::size_t, 3> tracking{};
+  std::map<std::string, std::size_t> tracking_reasons;
+  std::vector<eval::Nees> nees;         // of every accepted scan whose pose has a covariance
+  std::vector<double> prior_distances;  // sigmas, of every accepted match measured against a prior
   Points map;
   double wall_seconds = 0.0;  // whole run, pipeline only
   bool stopped_early = false;

@@ -77,7 +77,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   add_slam_config_options(
       *cmd, options->config, options->overrides,
-      "SLAM parameters YAML (default: the built-in defaults, as in config/slam.yaml)");
+      "SLAM parameters YAML (default: the built-in defaults: the seed, as in config/seed.yaml)");
   cmd->add_option("--iterations", options->iterations, "iteration counts to try")
       ->delimiter(',')
       ->check(CLI::PositiveNumber)

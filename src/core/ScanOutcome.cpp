@@ -24,6 +24,8 @@ std::string to_string(ScanOutcome outcome) {
       return "error_too_large";
     case ScanOutcome::ErrorIncreased:
       return "error_increased";
+    case ScanOutcome::DisagreesWithPrior:
+      return "disagrees_with_prior";
   }
   return "unknown";
 }

@@ -17,8 +17,9 @@ enum class ScanOutcome {
   RotationTooLarge,     // accumulated yaw correction beyond icp.max_rotation
   ErrorTooLarge,        // error after above icp.max_error_after (seed step 4)
   ErrorIncreased,       // error after above icp.max_error_ratio * error before (seed step 4)
+  DisagreesWithPrior,   // beyond the seed: too many sigmas from the motion prior (icp.prior_gate)
 };
-constexpr std::size_t kScanOutcomeCount = 10;
+constexpr std::size_t kScanOutcomeCount = 11;
 
 std::string to_string(ScanOutcome outcome);
 

@@ -113,6 +113,12 @@ struct SlamConfig {
     int refine_iterations = 5;
     // m (and rad); stop the ICP early once a step is smaller (0 = never: the seed's fixed count).
     double stop_step = 0.0;
+    // Beyond the seed: a match whose position differs from the motion prior's prediction, in the
+    // directions the scan fixed, by more than this many standard deviations of the two together
+    // (a Mahalanobis distance) is rejected as disagreeing with the prior (0: no such check, as the
+    // seed; needs a motion prior with a covariance and degeneracy.threshold > 0, which gives the
+    // match its covariance).
+    double prior_gate = 0.0;
   } icp;
 
   // The nearest-neighbour search: FLANN approximate kd-trees (real time) or exact (reference).
@@ -169,6 +175,10 @@ struct SlamConfig {
   // Orientation source: how far apart the IMU samples around a scan may be.
   struct Imu {
     double max_gap = 0.1;  // s; a scan with no IMU sample this close is dropped
+    // rad, 1 sigma: how well the source knows the attitude, as the pose's covariance states it
+    // (the matcher takes roll and pitch from the source, and the heading unless it corrects it).
+    double attitude_sigma = 0.0175;  // roll and pitch: an autopilot's attitude, about 1 degree
+    double heading_sigma = 0.035;    // yaw: about 2 degrees
   } imu;
 };
 

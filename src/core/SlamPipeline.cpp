@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/Heading.hpp"
+#include "core/extensions/PriorAgreement.hpp"
 #include "core/extensions/Relocalisation.hpp"
 #include "core/extensions/ScanInformation.hpp"
 #include "core/extensions/SurfaceNormals.hpp"
@@ -87,15 +88,19 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   report.error_before = match.error_before;
   report.error_after = match.error_after;
   report.iterations = match.iterations;
-  if (match.outcome != ScanOutcome::Accepted) {
-    if (!predicted.isZero()) {
-      covariance_ = predicted_covariance(prediction, scan.stamp);
-      pose_ = {scan.stamp, pose_.position + predicted, orientation};
-      report.pose = pose_;
-      report.covariance = covariance_;
-      report.dead_reckoned = true;
+  if (match.outcome != ScanOutcome::Accepted) return carried_by_prior(report, start, prediction);
+
+  // Beyond the seed: what the scan saw, and whether the match agrees with the motion prior there.
+  const Vec3 position = keep_what_the_scan_saw(report, match, start, prediction);
+  const std::optional<PriorDistance> distance =
+      distance_from_prior(report, match, start, prediction);
+  if (distance && !report.relocalised) {
+    report.prior_distance = distance->sigmas;
+    if (config_.icp.prior_gate > 0.0 && distance->sigmas > config_.icp.prior_gate) {
+      report.outcome = ScanOutcome::DisagreesWithPrior;
+      return carried_by_prior(report, start, prediction);
     }
-    return finish(report);
+    match_noise_.add(*distance);
   }
 
   // The heading the scan agreed with becomes the correction for this and later scans.
@@ -106,10 +111,37 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   }
 
   // Steps 6-7: report the new pose; a keyframe after enough motion.
-  pose_ = {scan.stamp, keep_what_the_scan_saw(report, match, start, prediction), orientation};
+  pose_ = {scan.stamp, position, orientation};
+  covariance_ = report.covariance;
   report.pose = pose_;
   if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
   return finish(report);
+}
+
+// A rejected scan: with a motion prior, the vehicle went where the prior says (the start), with
+// the prior's covariance; without one (the seed), the pose stays.
+ScanReport SlamPipeline::carried_by_prior(ScanReport& report, const Pose& start,
+                                          const MotionPrediction& prediction) {
+  if (start.position == pose_.position) return finish(report);
+  covariance_ = predicted_covariance(prediction, start.stamp);
+  pose_ = start;
+  report.pose = pose_;
+  report.covariance = covariance_;
+  report.dead_reckoned = true;
+  return finish(report);
+}
+
+// The match's correction of the prediction, in the directions the scan fixed, in standard
+// deviations of the two together (extensions/PriorAgreement): the match's covariance as
+// MatchNoise has learnt to scale it, the prior's own. None without the degeneracy analysis (no
+// match covariance) or a prior with a covariance.
+std::optional<PriorDistance> SlamPipeline::distance_from_prior(
+    const ScanReport& report, const MatchResult& match, const Pose& start,
+    const MotionPrediction& prediction) const {
+  if (!prediction.covariance || config_.degeneracy.threshold <= 0.0) return std::nullopt;
+  return uavslam::distance_from_prior(match.position - start.position, report.seen.observed,
+                                      match_noise_.scale() * report.seen.covariance +
+                                          predicted_covariance(prediction, start.stamp));
 }
 
 // The seed trusts the source (heading: source); otherwise the heading is estimated in every scan
@@ -154,7 +186,8 @@ ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected) const {
 // Beyond the seed: where the scan is blind (a corridor's axis), the match only held the start, so
 // the position along those directions stays as the motion prior predicted it:
 //   p = p_start + P (p_match - p_start)   (P: projection onto the directions the scan fixes)
-// and the covariance is the match's there, the prediction's elsewhere:
+// and the covariance is the match's there (as MatchNoise has learnt to scale it), the
+// prediction's elsewhere:
 //   Sigma = Sigma_scan + (I - P) Sigma_predicted (I - P)
 // With no predicted covariance (no motion model), the vehicle may have gone recovery.max_speed
 // per second along a blind direction since the last pose.
@@ -168,8 +201,8 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
       config_.degeneracy.threshold, measures_height);
   const Eigen::Matrix3d prior = predicted_covariance(prediction, start.stamp);
   const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - report.seen.observed;
-  covariance_ = report.seen.covariance + blind * prior * blind.transpose();
-  report.covariance = covariance_;
+  report.covariance =
+      match_noise_.scale() * report.seen.covariance + blind * prior * blind.transpose();
   return start.position + report.seen.observed * (match.position - start.position);
 }
 

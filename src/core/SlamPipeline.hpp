@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 
 #include "core/ImuBuffer.hpp"
@@ -14,6 +15,8 @@
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/MatchNoise.hpp"
+#include "core/extensions/PriorAgreement.hpp"
 #include "core/extensions/ScanInformation.hpp"
 
 namespace uavslam {
@@ -38,6 +41,9 @@ struct ScanReport {
   // pose's covariance: the match's in the directions it fixed, the motion prior's in the others.
   Observability seen;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // m^2, of pose.position
+  // The match's distance from the motion prior's prediction, in standard deviations
+  // (extensions/PriorAgreement); 0 without a prior that has a covariance.
+  double prior_distance = 0.0;
 
   bool accepted() const {
     return outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised;
@@ -69,6 +75,8 @@ class SlamPipeline {
   // How many scans ended in each outcome, indexed by ScanOutcome.
   const std::array<std::size_t, kScanOutcomeCount>& outcome_counts() const { return counts_; }
   std::size_t rejected_imu_samples() const { return imu_.rejected(); }
+  // How much the matches' own covariance is scaled up, as their innovations show (MatchNoise).
+  double match_noise_scale() const { return match_noise_.scale(); }
 
  private:
   ScanReport finish(ScanReport report);
@@ -80,6 +88,11 @@ class SlamPipeline {
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
   ScanPoints scan_points(const ProjectedScan& projected) const;
   Eigen::Matrix3d predicted_covariance(const MotionPrediction& prediction, double stamp) const;
+  ScanReport carried_by_prior(ScanReport& report, const Pose& start,
+                              const MotionPrediction& prediction);
+  std::optional<PriorDistance> distance_from_prior(const ScanReport& report,
+                                                   const MatchResult& match, const Pose& start,
+                                                   const MotionPrediction& prediction) const;
   Vec3 keep_what_the_scan_saw(ScanReport& report, const MatchResult& match, const Pose& start,
                               const MotionPrediction& prediction);
 
@@ -95,6 +108,7 @@ class SlamPipeline {
   std::array<std::size_t, kScanOutcomeCount> counts_{};
   std::vector<Neighbour> nearest_;  // the last match's neighbours, the next one's warm start
   Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();  // of pose_.position
+  MatchNoise match_noise_;
 };
 
 }  // namespace uavslam

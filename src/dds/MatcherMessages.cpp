@@ -13,16 +13,28 @@ float pose_quality(const ScanReport& report, const SlamConfig& config) {
 msg::PoseWithCovarianceStamped pose_message(const ScanReport& report, const SlamConfig& config,
                                             std::uint64_t scan_seq, std::uint64_t seq,
                                             const Source& source) {
-  return to_msg(report.pose, pose_quality(report, config), scan_seq, seq, source);
+  msg::PoseWithCovarianceStamped m =
+      to_msg(report.pose, pose_quality(report, config), scan_seq, seq, source);
+  if (report.covariance.isZero()) return m;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c)
+      m.covariance()[static_cast<std::size_t>(6 * r + c)] = report.covariance(r, c);
+  }
+  const double attitude = config.imu.attitude_sigma * config.imu.attitude_sigma;
+  m.covariance()[21] = attitude;  // roll
+  m.covariance()[28] = attitude;  // pitch
+  m.covariance()[35] = config.imu.heading_sigma * config.imu.heading_sigma;
+  return m;
 }
 
 msg::MapPoints keyframe_message(const Keyframe& keyframe, const Source& source) {
   return to_msg(keyframe.points, keyframe.sensor_origin, keyframe.stamp, keyframe.index, source);
 }
 
-msg::MatcherStatus status_message(const ScanReport& report, const Scan& scan, double processing_ms,
-                                  double latency_ms, const MatcherCounts& counts, std::uint64_t seq,
+msg::MatcherStatus status_message(const VehicleScan& result, const Scan& scan, double latency_ms,
+                                  const MatcherCounts& counts, std::uint64_t seq,
                                   const Source& source) {
+  const ScanReport& report = result.report;
   msg::MatcherStatus s;
   msg::Header header;
   header.stamp(to_msg_time(scan.stamp));
@@ -39,11 +51,14 @@ msg::MatcherStatus status_message(const ScanReport& report, const Scan& scan, do
   s.map_updated(report.map_updated);
   s.map_size(report.map_size);
   s.latency_ms(latency_ms);
-  s.processing_ms(processing_ms);
+  s.processing_ms(result.pipeline_seconds * 1e3);
   s.scans_received(counts.received);
   s.scans_skipped(counts.skipped);
   s.scans_rejected(counts.rejected);
   s.scans_accepted(counts.accepted);
+  s.tracking(to_string(result.tracking.state));
+  s.tracking_reason(to_string(result.tracking.reason));
+  s.degenerate_directions(static_cast<std::uint32_t>(report.seen.degenerate));
   return s;
 }
 

@@ -19,6 +19,9 @@ namespace uavslam::dds {
 // (icp.max_error_after); 1 for the scan that seeded the map.
 float pose_quality(const ScanReport& report, const SlamConfig& config);
 
+// The pose's covariance: the position's as the report gives it, the attitude's as the orientation
+// source states it (imu.attitude_sigma, imu.heading_sigma); all zero (unknown) when the report has
+// none (the seed's mode, without the degeneracy analysis).
 msg::PoseWithCovarianceStamped pose_message(const ScanReport& report, const SlamConfig& config,
                                             std::uint64_t scan_seq, std::uint64_t seq,
                                             const Source& source);
@@ -34,9 +37,9 @@ struct MatcherCounts {
   std::uint64_t accepted = 0;  // poses published
 };
 
-// processing_ms: the matcher's time on the scan; latency_ms: from its publication to now.
-msg::MatcherStatus status_message(const ScanReport& report, const Scan& scan, double processing_ms,
-                                  double latency_ms, const MatcherCounts& counts, std::uint64_t seq,
+// latency_ms: from the scan's publication to now; the processing time is the pipeline's.
+msg::MatcherStatus status_message(const VehicleScan& result, const Scan& scan, double latency_ms,
+                                  const MatcherCounts& counts, std::uint64_t seq,
                                   const Source& source);
 
 }  // namespace uavslam::dds

@@ -93,6 +93,10 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.stop_step = v.as_double(NumberRange::non_negative());
        }},
+      {"icp", "prior_gate",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.prior_gate = v.as_double(NumberRange::non_negative());
+       }},
       {"nearest_neighbour", "index",
        [](SlamConfig& c, const YamlReader& v) {
          c.nearest_neighbour.index = as_mode<IndexKind>(v);
@@ -176,6 +180,14 @@ const std::vector<Parameter>& parameters() {
       {"imu", "max_gap",
        [](SlamConfig& c, const YamlReader& v) {
          c.imu.max_gap = v.as_double(NumberRange::positive());
+       }},
+      {"imu", "attitude_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.imu.attitude_sigma = v.as_double(NumberRange::positive());
+       }},
+      {"imu", "heading_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.imu.heading_sigma = v.as_double(NumberRange::positive());
        }},
   };
   return table;

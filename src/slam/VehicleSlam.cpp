@@ -16,7 +16,7 @@ double seconds_since(Clock::time_point start) {
 }  // namespace
 
 VehicleSlam::VehicleSlam(const SlamConfig& config, const DenseProducts& products)
-    : pipeline_(config) {
+    : pipeline_(config), tracking_(config.recovery.gap) {
   // The odometry is as much "at the scan's time" as the orientation: the same tolerance.
   if (config.icp.motion_prior == MotionPrior::Odometry) {
     odometry_.emplace(config.imu.max_gap, config.motion);
@@ -49,12 +49,13 @@ void VehicleSlam::scan_posed(const ScanReport& report) {
 
 // The ICP starts from the motion prior's motion since the last posed scan (none without a prior:
 // the seed); a scan that got a pose is the next motion's start.
-VehicleScan VehicleSlam::process_scan(const Scan& scan) {
+VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_before) {
   VehicleScan result;
   const auto started = Clock::now();
   result.report = pipeline_.process_scan(scan, predicted_motion(scan.stamp));
   if (result.posed()) scan_posed(result.report);
   result.pipeline_seconds = seconds_since(started);
+  result.tracking = tracking_.judge(scan, result.report, skipped_before);
   if (result.report.map_updated) result.keyframe = keyframe_of(scan, result.report);
   if (result.posed()) add_dense(scan, result.report, result.keyframe ? &*result.keyframe : nullptr);
   return result;

@@ -6,7 +6,8 @@
 //     OdometryPrior) or the IMU's accelerations integrated (icp.motion_prior imu, InertialPrior);
 //   - the sensor's mount: where the scanner was when a keyframe was taken, the rays' origin;
 //   - the keyframe products: what each keyframe adds to the map, and, for the offline variant,
-//     the dense cloud of every posed scan and the occupancy octree of the keyframes.
+//     the dense cloud of every posed scan and the occupancy octree of the keyframes;
+//   - the tracking state: tracking, degraded or lost, and why (TrackingMonitor).
 // The pose-graph back end plugs in here.
 #pragma once
 
@@ -21,6 +22,7 @@
 #include "maps/OccupancyOctree.hpp"
 #include "slam/InertialPrior.hpp"
 #include "slam/OdometryPrior.hpp"
+#include "slam/TrackingMonitor.hpp"
 
 namespace uavslam {
 
@@ -43,6 +45,7 @@ struct VehicleScan {
   ScanReport report;  // its added_points are moved into keyframe
   std::optional<Keyframe> keyframe;
   double pipeline_seconds = 0.0;  // the matching alone (motion prior and pipeline)
+  TrackingStatus tracking;        // tracking, degraded or lost, and why
 
   // The scan got a pose: matched, or (rejected with a motion prior) dead-reckoned.
   bool posed() const { return report.accepted() || report.dead_reckoned; }
@@ -62,7 +65,9 @@ class VehicleSlam {
   // non-finite or out-of-order sample is dropped and counted (odometry_prior()->rejected()).
   void add_odometry(const OdometrySample& sample);
 
-  VehicleScan process_scan(const Scan& scan);
+  // skipped_before: scans the caller dropped unprocessed just before this one (it fell behind);
+  // they make the tracking state degraded (overload).
+  VehicleScan process_scan(const Scan& scan, std::size_t skipped_before = 0);
 
   const SlamPipeline& pipeline() const { return pipeline_; }
   const SlamConfig& config() const { return pipeline_.config(); }
@@ -89,6 +94,7 @@ class VehicleSlam {
   SlamPipeline pipeline_;
   std::optional<OdometryPrior> odometry_;
   std::optional<InertialPrior> inertial_;
+  TrackingMonitor tracking_;
   std::unique_ptr<DenseCloud> cloud_;
   std::unique_ptr<OccupancyOctree> occupancy_;
   std::size_t keyframes_ = 0;

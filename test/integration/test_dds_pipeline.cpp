@@ -34,14 +34,16 @@ using namespace std::chrono_literals;
 
 constexpr int kDomain = 171;              // this test's own DDS domain
 constexpr int kIncompatibleDomain = 190;  // the incompatible-QoS test's
+constexpr int kCorridorDomain = 179;      // the plain corridor's
 const std::string kScenario = std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/short.yaml";
 
 class DdsPipeline : public test::ProcessTest {
  protected:
   // A process of this test: on its own domain, for vehicle uav1.
-  static std::vector<std::string> node(const char* name, std::vector<std::string> extra) {
+  static std::vector<std::string> node(const char* name, std::vector<std::string> extra,
+                                       int domain = kDomain) {
     extra.insert(extra.begin(), {"--vehicle", "uav1"});
-    return node_argv(name, kDomain, extra);
+    return node_argv(name, domain, extra);
   }
 };
 
@@ -107,6 +109,78 @@ TEST_F(DdsPipeline, ThreeProcessesTrackTheShortFlight) {
             << " m, vertical " << errors.ate_vertical_rmse << " m; matcher: " << matcher.log();
   EXPECT_LT(errors.ate_horizontal_rmse, 0.10);
   EXPECT_LT(errors.ate_vertical_rmse, 0.10);
+}
+
+// The plain corridor (issue 17) over DDS: along its axis the scan is blind. Every airborne status
+// says so (degraded: degenerate), and every pose's covariance says which way: metres along the
+// axis, centimetres across. The vehicle is carried down the corridor by the IMU.
+TEST_F(DdsPipeline, ThePlainCorridorsBlindAxisIsOnTheWire) {
+  const std::string scenario =
+      std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/plain_corridor.yaml";
+  dds::Participant ground(kCorridorDomain, dds::default_profiles_path(), "uavslam_loopback",
+                          "test");
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::vector<Pose> poses;
+  std::size_t blind_poses = 0;  // axis sigma over ten times the lateral one
+  std::size_t statuses = 0, degenerate = 0;
+  std::uint64_t last_status_scan = 0;
+  dds::Reader<msg::PoseWithCovarianceStampedPubSubType> pose_reader(
+      ground, dds::topic_name("uav1", dds::kPoseTopic), "state_reader",
+      [&](const msg::PoseWithCovarianceStamped& m, const eprosima::fastdds::dds::SampleInfo&) {
+        std::lock_guard<std::mutex> lock(mutex);
+        poses.push_back(dds::from_msg(m));
+        const auto& c = m.covariance();
+        blind_poses += c[0] > 100.0 * c[7] && c[7] > 0.0 && c[35] > 0.0;
+      });
+  dds::Reader<msg::MatcherStatusPubSubType> status_reader(
+      ground, dds::topic_name("uav1", dds::kMatcherStatusTopic), "status_reader",
+      [&](const msg::MatcherStatus& m, const eprosima::fastdds::dds::SampleInfo&) {
+        {
+          std::lock_guard<std::mutex> lock(mutex);
+          last_status_scan = m.scan_seq();
+          ++statuses;
+          degenerate += m.tracking() == "degraded" && m.tracking_reason() == "degenerate" &&
+                        m.degenerate_directions() == 1;
+        }
+        changed.notify_all();
+      });
+
+  process::ChildProcess matcher(node("slam_matcher",
+                                     {"--sensor", scenario, "--slam-config",
+                                      std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml"},
+                                     kCorridorDomain),
+                                log_path("slam_matcher_corridor"));
+  ASSERT_TRUE(matcher.started());
+  ASSERT_TRUE(pose_reader.wait_for_matched(1, 30s)) << matcher.log();
+  ASSERT_TRUE(status_reader.wait_for_matched(1, 30s)) << matcher.log();
+  const std::string start_at = shared_start_time();
+  process::ChildProcess imu(node("imu_bridge", sensor_flags(scenario, start_at), kCorridorDomain),
+                            log_path("imu_bridge_corridor"));
+  process::ChildProcess lidar(
+      node("lidar_driver", sensor_flags(scenario, start_at), kCorridorDomain),
+      log_path("lidar_driver_corridor"));
+  ASSERT_TRUE(lidar.wait(60s)) << lidar.log();
+  EXPECT_EQ(lidar.exit_code(), 0) << lidar.log();
+  ASSERT_TRUE(imu.wait(60s)) << imu.log();
+  EXPECT_EQ(imu.exit_code(), 0) << imu.log();
+  {
+    std::unique_lock<std::mutex> lock(mutex);
+    changed.wait_for(lock, 10s, [&] { return last_status_scan >= 1080; });  // the last scan
+  }
+  EXPECT_EQ(matcher.stop(10s), 0) << matcher.log();
+
+  std::lock_guard<std::mutex> lock(mutex);
+  ASSERT_GE(poses.size(), 950u) << "of 1081 scans\n" << matcher.log();
+  EXPECT_GE(degenerate, statuses * 9 / 10) << statuses << " statuses";
+  EXPECT_GE(blind_poses, poses.size() * 9 / 10) << poses.size() << " poses";
+  sim::FlightSimulator truth(io::load_scenario(scenario));
+  std::vector<Pose> ground_truth;
+  for (const Pose& p : poses) ground_truth.push_back(truth.ground_truth_at(p.stamp));
+  const eval::TrajectoryErrors errors = eval::compare_trajectories(poses, ground_truth);
+  std::cerr << "poses " << poses.size() << ", ATE horizontal " << errors.ate_horizontal_rmse
+            << " m; " << degenerate << " of " << statuses << " statuses degenerate\n";
+  EXPECT_LT(errors.ate_horizontal_rmse, 0.25);
 }
 
 // The shipped sensor file of a real UTM-30LX (config/sensors: 1081 steps of 0.25 deg, no world)

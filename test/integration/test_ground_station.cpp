@@ -92,6 +92,8 @@ msg::MatcherStatus matcher_status() {
   status.scans_skipped(2);
   status.scans_rejected(3);
   status.scans_accepted(39);
+  status.tracking("degraded");
+  status.tracking_reason("degenerate");
   return status;
 }
 
@@ -148,7 +150,7 @@ TEST_F(GroundStationTest, LateJoinerGetsTheMapAndRecordsTheFlight) {
   }
   ASSERT_EQ(gcs.stop(10s), 0) << gcs.log();
   EXPECT_THAT(gcs.log(), HasSubstr("(snapshot 7)"));
-  EXPECT_THAT(gcs.log(), HasSubstr("accepted 39 rejected 3 skipped 2"));
+  EXPECT_THAT(gcs.log(), HasSubstr("degraded (degenerate), accepted 39 rejected 3 skipped 2"));
 
   const std::vector<Pose> trajectory = io::read_tum(out("trajectory.tum").string());
   ASSERT_EQ(trajectory.size(), kPoses);

@@ -218,6 +218,49 @@ TEST_F(PipelineInRoom, ARejectedScanWithAPriorIsDeadReckoned) {
   EXPECT_TRUE(slam.pose().position.isApprox(start + Vec3(0.2, 0, 0)));
 }
 
+// Beyond the seed (icp.prior_gate): the prior, sure to 1 cm, says the vehicle moved 0.2 m; the
+// scan says it stayed. Six sigmas and more apart: the match is rejected, counted, and the pose is
+// the prior's. Without the check the match is taken.
+TEST_F(PipelineInRoom, AMatchThatDisagreesWithThePriorIsRejected) {
+  config.nearest_neighbour.index = IndexKind::Exact;
+  config.degeneracy.threshold = 0.05;  // gives the match its covariance
+  const auto second_scan = [&](double gate) {
+    config.icp.prior_gate = gate;
+    SlamPipeline slam(config, start);
+    slam.add_imu(level_imu(0.0));
+    slam.add_imu(level_imu(0.1));
+    EXPECT_TRUE(slam.process_scan(room.scan_at(pose_at(start, 0.0), 0.0)).accepted());
+    const MotionPrediction prior{Vec3(0.2, 0, 0), 1e-4 * Eigen::Matrix3d::Identity()};
+    ScanReport r = slam.process_scan(room.scan_at(pose_at(start, 0.1), 0.1), prior);
+    EXPECT_EQ(slam.outcome_counts()[std::size_t(ScanOutcome::DisagreesWithPrior)],
+              r.outcome == ScanOutcome::DisagreesWithPrior ? 1u : 0u);
+    return r;
+  };
+
+  const ScanReport gated = second_scan(5.0);
+  EXPECT_EQ(gated.outcome, ScanOutcome::DisagreesWithPrior);
+  EXPECT_GT(gated.prior_distance, 15.0);
+  EXPECT_TRUE(gated.dead_reckoned);
+  EXPECT_TRUE(gated.pose.position.isApprox(start + Vec3(0.2, 0, 0)));
+
+  const ScanReport taken = second_scan(0.0);
+  ASSERT_EQ(taken.outcome, ScanOutcome::Accepted);
+  EXPECT_GT(taken.prior_distance, 15.0) << "measured, though not checked";
+  EXPECT_LT((taken.pose.position - start).head<2>().norm(), 0.01);
+
+  // A prior that agrees (1 cm off, sure to 1 cm) passes the same check.
+  config.icp.prior_gate = 5.0;
+  SlamPipeline slam(config, start);
+  slam.add_imu(level_imu(0.0));
+  slam.add_imu(level_imu(0.1));
+  ASSERT_TRUE(slam.process_scan(room.scan_at(pose_at(start, 0.0), 0.0)).accepted());
+  const ScanReport agreed =
+      slam.process_scan(room.scan_at(pose_at(start + Vec3(0.1, 0, 0), 0.1), 0.1),
+                        {Vec3(0.11, 0, 0), 1e-4 * Eigen::Matrix3d::Identity()});
+  EXPECT_EQ(agreed.outcome, ScanOutcome::Accepted);
+  EXPECT_LT(agreed.prior_distance, 5.0);
+}
+
 // Beyond the seed: after 2 s without scans (a link outage) the vehicle is 2.4 m on, beyond the
 // seed's 1 m correction limit from the last position. With the recovery the ICP searches a grid
 // of starts around it and finds the vehicle; without it (recovery.gap 0, the seed) it cannot.

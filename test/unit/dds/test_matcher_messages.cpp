@@ -34,18 +34,22 @@ TEST(MatcherMessages, TheKeyframeAndTheStatusCarryWhatTheScanGave) {
   ASSERT_EQ(from_msg(points).size(), 2u);
   EXPECT_TRUE(from_msg(points)[1].isApprox(Vec3(1.0, 2.5, 0.3), 1e-6));
 
-  ScanReport report;
+  VehicleScan result;
+  ScanReport& report = result.report;
   report.outcome = ScanOutcome::ErrorIncreased;
   report.iterations = 10;
   report.error_before = 0.01;
   report.error_after = 0.02;
   report.points_used = 216;
   report.map_size = 4320;
+  report.seen.degenerate = 1;
+  result.pipeline_seconds = 0.0004;
+  result.tracking = {Tracking::Lost, TrackingReason::RepeatedRejections};
   Scan scan;
   scan.stamp = 12.5;
   scan.sequence = 99;
   const msg::MatcherStatus status =
-      status_message(report, scan, 0.4, 1.5, {100, 2, 3, 95}, 7, {"map", "uav1"});
+      status_message(result, scan, 1.5, {100, 2, 3, 95}, 7, {"map", "uav1"});
   EXPECT_EQ(status.outcome(), "error_increased");
   EXPECT_EQ(status.scan_seq(), 99u);
   EXPECT_EQ(status.header().seq(), 7u);
@@ -59,6 +63,35 @@ TEST(MatcherMessages, TheKeyframeAndTheStatusCarryWhatTheScanGave) {
   EXPECT_EQ(status.scans_skipped(), 2u);
   EXPECT_EQ(status.scans_rejected(), 3u);
   EXPECT_EQ(status.scans_accepted(), 95u);
+  EXPECT_EQ(status.tracking(), "lost");
+  EXPECT_EQ(status.tracking_reason(), "repeated_rejections");
+  EXPECT_EQ(status.degenerate_directions(), 1u);
+}
+
+// The position's covariance as the pipeline reported it, the attitude's as the source states it;
+// without a covariance (the seed's mode) the whole matrix says "unknown".
+TEST(MatcherMessages, ThePoseCarriesTheCovariance) {
+  SlamConfig config;
+  config.imu.attitude_sigma = 0.02;
+  config.imu.heading_sigma = 0.05;
+  ScanReport report;
+  report.outcome = ScanOutcome::Accepted;
+  const auto unknown = pose_message(report, config, 1, 1, {"map", "uav1"});
+  for (double c : unknown.covariance()) EXPECT_EQ(c, 0.0);
+
+  report.covariance << 4.0, 0.1, 0.0,  //
+      0.1, 1e-4, 0.0,                  //
+      0.0, 0.0, 1e-4;
+  const auto m = pose_message(report, config, 1, 1, {"map", "uav1"});
+  EXPECT_DOUBLE_EQ(m.covariance()[0], 4.0);  // x: a corridor's axis
+  EXPECT_DOUBLE_EQ(m.covariance()[1], 0.1);
+  EXPECT_DOUBLE_EQ(m.covariance()[6], 0.1);
+  EXPECT_DOUBLE_EQ(m.covariance()[7], 1e-4);
+  EXPECT_DOUBLE_EQ(m.covariance()[14], 1e-4);
+  EXPECT_DOUBLE_EQ(m.covariance()[21], 0.02 * 0.02);
+  EXPECT_DOUBLE_EQ(m.covariance()[28], 0.02 * 0.02);
+  EXPECT_DOUBLE_EQ(m.covariance()[35], 0.05 * 0.05);
+  EXPECT_EQ(m.covariance()[3], 0.0) << "no cross-covariance between position and attitude";
 }
 
 }  // namespace

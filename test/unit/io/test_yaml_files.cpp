@@ -300,6 +300,9 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.map.keyframe_height, defaults.map.keyframe_height);
   EXPECT_EQ(config.map.keyframe_lateral, defaults.map.keyframe_lateral);
   EXPECT_EQ(config.imu.max_gap, defaults.imu.max_gap);
+  EXPECT_EQ(config.imu.attitude_sigma, defaults.imu.attitude_sigma);
+  EXPECT_EQ(config.imu.heading_sigma, defaults.imu.heading_sigma);
+  EXPECT_EQ(config.icp.prior_gate, defaults.icp.prior_gate);
   EXPECT_EQ(config.degeneracy.threshold, defaults.degeneracy.threshold);
   EXPECT_EQ(config.degeneracy.min_sigma, defaults.degeneracy.min_sigma);
   EXPECT_EQ(config.motion.accel_noise_density, defaults.motion.accel_noise_density);
@@ -348,9 +351,10 @@ icp:
   robust_scale: 0.05
   refine_iterations: 3
   stop_step: 0.001
+  prior_gate: 4
 nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
 map: {keyframe_height: 0.1, keyframe_lateral: 0.25, keyframe_rotation: 0.3, min_point_spacing: 0.03}
-imu: {max_gap: 0.02}
+imu: {max_gap: 0.02, attitude_sigma: 0.01, heading_sigma: 0.05}
 degeneracy: {threshold: 0.04, min_sigma: 0.02}
 motion:
   accel_noise_density: 0.01
@@ -385,6 +389,7 @@ motion:
   EXPECT_EQ(c.icp.robust_scale, 0.05);
   EXPECT_EQ(c.icp.refine_iterations, 3);
   EXPECT_EQ(c.icp.stop_step, 0.001);
+  EXPECT_EQ(c.icp.prior_gate, 4.0);
   EXPECT_EQ(c.map.keyframe_rotation, 0.3);
   EXPECT_EQ(c.map.min_point_spacing, 0.03);
   EXPECT_EQ(c.nearest_neighbour.index, IndexKind::Exact);
@@ -393,6 +398,8 @@ motion:
   EXPECT_EQ(c.map.keyframe_height, 0.1);
   EXPECT_EQ(c.map.keyframe_lateral, 0.25);
   EXPECT_EQ(c.imu.max_gap, 0.02);
+  EXPECT_EQ(c.imu.attitude_sigma, 0.01);
+  EXPECT_EQ(c.imu.heading_sigma, 0.05);
 }
 
 TEST_F(YamlFileTest, SlamConfigRejectsAnUnknownIndex) {
