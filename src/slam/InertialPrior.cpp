@@ -104,15 +104,9 @@ void InertialPrior::start(const ScanReport& report) {
 
 // The matched position, measured along the directions the scan fixed.
 void InertialPrior::update(State& s, const ScanReport& report) const {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> split(report.seen.observed);
-  std::vector<int> fixed;
-  for (int k = 0; k < 3; ++k) {
-    if (split.eigenvalues()[k] > 0.5) fixed.push_back(k);
-  }
-  if (fixed.empty()) return;
-  const int m = int(fixed.size());
-  Eigen::MatrixXd E(3, m);
-  for (int j = 0; j < m; ++j) E.col(j) = split.eigenvectors().col(fixed[j]);
+  const Eigen::MatrixXd E = observed_basis(report.seen.observed);
+  if (E.cols() == 0) return;
+  const auto m = E.cols();
   Eigen::Matrix3d scan = report.seen.covariance;
   if (scan.isZero()) scan = kDefaultScanSigma * kDefaultScanSigma * Eigen::Matrix3d::Identity();
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, 9);

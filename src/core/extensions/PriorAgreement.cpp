@@ -2,19 +2,11 @@
 
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
-
 namespace uavslam {
 
 PriorDistance distance_from_prior(const Vec3& correction, const Eigen::Matrix3d& observed,
                                   const Eigen::Matrix3d& innovation_covariance) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> projection(observed);
-  Eigen::Matrix<double, 3, Eigen::Dynamic> basis(3, 0);
-  for (int i = 0; i < 3; ++i) {
-    if (projection.eigenvalues()(i) < 0.5) continue;  // a projection's eigenvalues are 0 or 1
-    basis.conservativeResize(Eigen::NoChange, basis.cols() + 1);
-    basis.col(basis.cols() - 1) = projection.eigenvectors().col(i);
-  }
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> basis = observed_basis(observed);
   if (basis.cols() == 0) return {};
   const int directions = static_cast<int>(basis.cols());
   const Eigen::MatrixXd S = basis.transpose() * innovation_covariance * basis;

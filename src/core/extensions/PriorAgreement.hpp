@@ -9,6 +9,7 @@
 #pragma once
 
 #include "core/Types.hpp"
+#include "core/extensions/ScanInformation.hpp"
 
 namespace uavslam {
 

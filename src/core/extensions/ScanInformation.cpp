@@ -87,4 +87,15 @@ Observability observability(const ScanInformation& information, double threshold
   return result;
 }
 
+Eigen::Matrix<double, 3, Eigen::Dynamic> observed_basis(const Eigen::Matrix3d& observed) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> projection(observed);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> basis(3, 0);
+  for (int i = 0; i < 3; ++i) {
+    if (projection.eigenvalues()(i) < 0.5) continue;
+    basis.conservativeResize(Eigen::NoChange, basis.cols() + 1);
+    basis.col(basis.cols() - 1) = projection.eigenvectors().col(i);
+  }
+  return basis;
+}
+
 }  // namespace uavslam

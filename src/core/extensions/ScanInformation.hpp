@@ -42,6 +42,10 @@ struct Observability {
   double weakest_fraction = 0.0;  // its information fraction (see above)
 };
 
+// An orthonormal basis (columns) of the directions a projection like Observability::observed keeps
+// (its eigenvalues are 0 or 1); no columns when the scan fixed none.
+Eigen::Matrix<double, 3, Eigen::Dynamic> observed_basis(const Eigen::Matrix3d& observed);
+
 // z counts only when the scan has floor or ceiling beams (measures_height); a planar scanner
 // without them never estimates height, and its z is not called degenerate.
 Observability observability(const ScanInformation& information, double threshold,
