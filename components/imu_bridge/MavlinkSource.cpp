@@ -104,9 +104,10 @@ void print_status(const mavlink::AutopilotSession& session, const std::string& l
     std::cerr << "unknown";
   }
   const mavlink::IntervalRequestCounts& r = s.interval_requests;
-  std::cerr << ", " << s.poses_sent << " poses sent, " << r.sent << " stream requests ("
-            << r.accepted << " accepted, " << r.refused << " refused, " << r.unanswered
-            << " unanswered), " << s.reboots << " autopilot reboots\n";
+  std::cerr << ", " << s.poses_sent << " poses sent (" << s.poses_withheld
+            << " dead-reckoned withheld), " << r.sent << " stream requests (" << r.accepted
+            << " accepted, " << r.refused << " refused, " << r.unanswered << " unanswered), "
+            << s.reboots << " autopilot reboots\n";
 }
 
 std::string stream_rate(double hz) {

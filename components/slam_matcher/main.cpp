@@ -140,10 +140,14 @@ class MatcherNode {
     const std::uint64_t skipped = queue_.scans_skipped();
     const VehicleScan result = slam_.process_scan(scan, skipped - counts_.skipped);
     const dds::Source source{"map", vehicle_};
-    if (result.report.accepted()) {
-      pose_.write(dds::pose_message(result.report, slam_.config(), scan.sequence,
-                                    counts_.accepted++, source));
+    // A rejected scan that the motion prior carried still gets its pose, with quality 0 and the
+    // prior's covariance: whoever flies on `pose` hears of the vehicle at every scan.
+    if (result.posed()) {
+      pose_.write(
+          dds::pose_message(result.report, slam_.config(), scan.sequence, poses_++, source));
+      dead_reckoned_ += result.report.dead_reckoned;
     }
+    counts_.accepted += result.report.accepted();
     if (result.keyframe) map_points_.write(dds::keyframe_message(*result.keyframe, source));
     counts_.rejected += !result.report.accepted();
     counts_.received = queue_.scans_received();
@@ -169,9 +173,10 @@ class MatcherNode {
   void print_summary() const {
     std::cerr << "slam_matcher: " << queue_.scans_received() << " scans received, "
               << queue_.scans_skipped() << " skipped (over " << max_scan_backlog_s_
-              << " s behind a newer one), " << counts_.accepted << " poses published, "
-              << counts_.rejected << " rejected, map " << slam_.pipeline().map().size()
-              << " points from " << slam_.keyframes() << " keyframes\n";
+              << " s behind a newer one), " << poses_ << " poses published (" << dead_reckoned_
+              << " dead-reckoned), " << counts_.rejected << " rejected, map "
+              << slam_.pipeline().map().size() << " points from " << slam_.keyframes()
+              << " keyframes\n";
     if (const OdometryPrior* prior = slam_.odometry_prior()) {
       std::cerr << "slam_matcher: odometry prior: " << queue_.odometry_received()
                 << " odometry samples received, " << prior->rejected()
@@ -197,6 +202,8 @@ class MatcherNode {
   dds::Reader<msg::ImuPubSubType> imu_;
   dds::MatcherCounts counts_;
   std::uint64_t statuses_ = 0;
+  std::uint64_t poses_ = 0;
+  std::uint64_t dead_reckoned_ = 0;
   bool layout_noted_ = false;
 };
 

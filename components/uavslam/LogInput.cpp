@@ -63,6 +63,9 @@ class CarmenInput : public LogInput {
   std::size_t malformed() const override { return stream_.malformed_lines(); }
   std::vector<std::string> take_problems() override { return stream_.take_new_problems(); }
   double data_seconds() const override { return stamps_.seconds(); }
+  std::optional<io::NoReturnCode> no_return_code() const override {
+    return stream_.flaser_no_return();
+  }
 
  private:
   // The three events of one scan: its heading, its odometry position, the scan.

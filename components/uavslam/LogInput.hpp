@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/Types.hpp"
+#include "io/NoReturnCode.hpp"
 
 namespace uavslam::cli {
 
@@ -43,6 +44,8 @@ class LogInput {
   // Why the input ended before the end of its file (a recording cut short: where and why), ""
   // when it did not. Known once next() returned nullopt.
   virtual std::string damage() const { return ""; }
+  // The range the log writes for "no return", when the input had to learn it (CARMEN FLASER).
+  virtual std::optional<io::NoReturnCode> no_return_code() const { return std::nullopt; }
 };
 
 using LogInputFactory = std::function<std::unique_ptr<LogInput>()>;

@@ -55,6 +55,7 @@ class Pass {
     }
     ++result_.scans_in;
     result_.dead_reckoned += scan.report.dead_reckoned;
+    result_.tracking.add(scan.tracking);
   }
 
   PassResult& result_;
@@ -117,6 +118,7 @@ PassResult run_pass(LogInput& input, const PassOptions& options, ProgressBar* pr
   result.data_seconds = input.data_seconds();
   result.malformed = input.malformed();
   result.input_damage = input.damage();
+  result.no_return_code = input.no_return_code();
   if (progress) progress->finish(result.scans_in);
   return result;
 }

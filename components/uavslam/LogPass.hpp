@@ -42,6 +42,7 @@ struct PassResult {
   std::size_t scans_in = 0;
   std::size_t keyframes = 0;
   std::size_t dead_reckoned = 0;
+  TrackingCounts tracking;
   std::size_t malformed = 0;
   std::vector<std::string> problems;  // descriptions of the malformed records the input kept
   Points map;                         // the matcher's world map
@@ -50,7 +51,8 @@ struct PassResult {
   double wall_seconds = 0.0;  // the whole pass: pipeline and dense products
   double data_seconds = 0.0;
   bool stopped_early = false;
-  std::string input_damage;  // LogInput::damage(): the input was cut short
+  std::string input_damage;                        // LogInput::damage(): the input was cut short
+  std::optional<io::NoReturnCode> no_return_code;  // LogInput::no_return_code()
 
   double real_time_factor() const { return wall_seconds > 0 ? data_seconds / wall_seconds : 0; }
   double pipeline_seconds() const;  // the matcher's share of wall_seconds (sum of scan_ms)

@@ -45,12 +45,15 @@ nlohmann::json to_json(const PassResult& run, const std::string& log_path,
   j["log"] = log_path;
   j["stopped_early"] = run.stopped_early;
   j["malformed_lines"] = run.malformed;
+  j["no_return_range"] =
+      run.no_return_code ? nlohmann::json(run.no_return_code->range) : nlohmann::json(nullptr);
   j["problems"] = run.problems;
   j["scans"] = {{"in", run.scans_in},
                 {"accepted", accepted},
                 {"rejected", run.scans_in - accepted},
                 {"rejected_by_reason", rejected_by_reason(run.outcomes)},
                 {"dead_reckoned", run.dead_reckoned}};
+  j["tracking"] = cli::to_json(run.tracking);
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
   j["matcher_ms_per_scan"] = {{"mean", ms.mean}, {"p50", ms.p50}, {"p99", ms.p99}, {"max", ms.max}};
   j["wall_seconds"] = run.pipeline_seconds();
@@ -69,7 +72,13 @@ void print_summary(std::ostream& out, const PassResult& run, const std::string& 
     out << "  dead-reckoned     " << run.dead_reckoned
         << " rejected scans given the odometry's pose\n";
   }
+  print_tracking(out, run.tracking);
   out << "  malformed lines   " << run.malformed << "\n";
+  if (run.no_return_code) {
+    out << std::fixed << std::setprecision(2) << "  no return         written as "
+        << run.no_return_code->range << " m (" << run.no_return_code->readings
+        << " readings, learned from the log)\n";
+  }
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
   out << std::fixed << std::setprecision(3) << "  matcher time      " << ms.mean

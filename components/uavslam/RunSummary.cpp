@@ -77,14 +77,13 @@ nlohmann::json rejected_by_reason(const OutcomeCounts& outcomes) {
   return rejected;
 }
 
-// "  tracking          7100 tracking, 80 degraded (degenerate 80), 0 lost"
-void print_tracking(std::ostream& out, const SlamRun& run) {
+void print_tracking(std::ostream& out, const TrackingCounts& tracking) {
   out << "  tracking          ";
-  for (std::size_t k = 0; k < run.tracking.size(); ++k) {
+  for (std::size_t k = 0; k < tracking.states.size(); ++k) {
     const std::string state = to_string(Tracking(k));
-    out << (k > 0 ? ", " : "") << run.tracking[k] << ' ' << state;
+    out << (k > 0 ? ", " : "") << tracking.states[k] << ' ' << state;
     std::string separator = " (";
-    for (const auto& [key, count] : run.tracking_reasons) {
+    for (const auto& [key, count] : tracking.reasons) {
       if (key.rfind(state + ": ", 0) != 0) continue;
       out << separator << key.substr(state.size() + 2) << ' ' << count;
       separator = ", ";
@@ -94,6 +93,13 @@ void print_tracking(std::ostream& out, const SlamRun& run) {
   out << '\n';
 }
 
+nlohmann::json to_json(const TrackingCounts& tracking) {
+  return {{"tracking", tracking.states[0]},
+          {"degraded", tracking.states[1]},
+          {"lost", tracking.states[2]},
+          {"by_reason", tracking.reasons}};
+}
+
 void print_summary(std::ostream& out, const RunSummary& s) {
   const SlamRun& run = *s.run;
   out << "uavslam simulate: " << s.scenario << (run.stopped_early ? " (stopped early)" : "")
@@ -101,7 +107,7 @@ void print_summary(std::ostream& out, const RunSummary& s) {
   print_scan_counts(out, run.scans_in, run.outcomes);
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
-  print_tracking(out, run);
+  print_tracking(out, run.tracking);
   if (s.errors) {
     print_errors(out, *s.errors);
   } else {
@@ -156,10 +162,7 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
                 {"rejected", run.scans_in - s.accepted()},
                 {"rejected_by_reason", rejected}};
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
-  j["tracking"] = {{"tracking", run.tracking[0]},
-                   {"degraded", run.tracking[1]},
-                   {"lost", run.tracking[2]},
-                   {"by_reason", run.tracking_reasons}};
+  j["tracking"] = to_json(run.tracking);
   if (!run.nees.empty()) {
     const eval::NeesSummary nees = eval::summarize(run.nees);
     j["consistency"] = {

@@ -38,7 +38,9 @@ void print_scan_counts(std::ostream& out, std::size_t scans_in, const OutcomeCou
 nlohmann::json rejected_by_reason(const OutcomeCounts& outcomes);
 std::size_t accepted_count(const OutcomeCounts& outcomes);
 
-void print_tracking(std::ostream& out, const SlamRun& run);
+// "  tracking          7100 tracking, 80 degraded (degenerate 80), 0 lost" and its JSON.
+void print_tracking(std::ostream& out, const TrackingCounts& tracking);
+nlohmann::json to_json(const TrackingCounts& tracking);
 void print_summary(std::ostream& out, const RunSummary& summary);
 nlohmann::json to_json(const RunSummary& summary, const SlamConfig& config);
 nlohmann::json to_json(const eval::TrajectoryErrors& errors);

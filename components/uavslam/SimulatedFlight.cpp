@@ -80,17 +80,6 @@ void write_flight_log(const std::string& path, const sim::Scenario& scenario,
   writer.close();
 }
 
-namespace {
-
-void count_tracking(SlamRun& run, const TrackingStatus& tracking) {
-  ++run.tracking[static_cast<std::size_t>(tracking.state)];
-  if (tracking.state != Tracking::Tracking) {
-    ++run.tracking_reasons[to_string(tracking.state) + ": " + to_string(tracking.reason)];
-  }
-}
-
-}  // namespace
-
 SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
                  const std::function<void(std::size_t, std::size_t)>& progress) {
   using Clock = std::chrono::steady_clock;
@@ -124,7 +113,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
       if (nees) run.nees.push_back(*nees);
       if (report.prior_distance > 0.0) run.prior_distances.push_back(report.prior_distance);
     }
-    count_tracking(run, result.tracking);
+    run.tracking.add(result.tracking);
     run.trace.push_back(
         {scan.stamp, report.outcome, report.points_used, report.error_before, report.error_after,
          report.iterations, report.map_updated, report.pose.position, truth,

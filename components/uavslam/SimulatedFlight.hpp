@@ -62,9 +62,7 @@ struct SlamRun {
   std::array<std::size_t, kScanOutcomeCount> outcomes{};
   std::size_t scans_in = 0;
   std::size_t keyframes = 0;
-  // Scans per tracking state, and per "state: reason" for those not tracking.
-  std::array<std::size_t, 3> tracking{};
-  std::map<std::string, std::size_t> tracking_reasons;
+  TrackingCounts tracking;
   std::vector<eval::Nees> nees;         // of every accepted scan whose pose has a covariance
   std::vector<double> prior_distances;  // sigmas, of every accepted match measured against a prior
   Points map;

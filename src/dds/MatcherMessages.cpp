@@ -6,8 +6,9 @@ namespace uavslam::dds {
 
 float pose_quality(const ScanReport& report, const SlamConfig& config) {
   if (report.outcome == ScanOutcome::MapInitialised) return 1.0f;
+  if (!report.accepted()) return 0.0f;
   return static_cast<float>(
-      std::clamp(1.0 - report.error_after / config.icp.max_error_after, 0.0, 1.0));
+      std::clamp(1.0 - report.error_after / config.icp.max_error_after, kLeastMatchQuality, 1.0));
 }
 
 msg::PoseWithCovarianceStamped pose_message(const ScanReport& report, const SlamConfig& config,

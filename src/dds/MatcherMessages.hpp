@@ -15,9 +15,11 @@
 
 namespace uavslam::dds {
 
-// How good the match was, for consumers of `pose`: 1 for a perfect fit, 0 at the rejection limit
-// (icp.max_error_after); 1 for the scan that seeded the map.
+// How good the match was, for consumers of `pose`: 1 for a perfect fit, 0.01 at the rejection
+// limit (icp.max_error_after); 1 for the scan that seeded the map; 0 for a pose the motion prior
+// carried (a rejected scan, dead-reckoned): no scan confirmed it.
 float pose_quality(const ScanReport& report, const SlamConfig& config);
+inline constexpr double kLeastMatchQuality = 0.01;
 
 // The pose's covariance: the position's as the report gives it, the attitude's as the orientation
 // source states it (imu.attitude_sigma, imu.heading_sigma); all zero (unknown) when the report has
@@ -34,7 +36,7 @@ struct MatcherCounts {
   std::uint64_t received = 0;
   std::uint64_t skipped = 0;  // dropped unprocessed: a fresher scan was waiting
   std::uint64_t rejected = 0;
-  std::uint64_t accepted = 0;  // poses published
+  std::uint64_t accepted = 0;  // scans matched
 };
 
 // latency_ms: from the scan's publication to now; the processing time is the pipeline's.

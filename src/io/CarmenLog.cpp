@@ -86,7 +86,7 @@ LineResult finish(Fields& f, CarmenMessage message) {
 }
 
 // FLASER n r1..rn x y theta odom_x odom_y odom_theta ipc_timestamp hostname logger_timestamp
-LineResult parse_flaser(Fields& f) {
+LineResult parse_flaser(Fields& f, double max_range) {
   constexpr std::size_t kFixed = 11;
   if (f.size() < 2) return malformed(field_count_problem("FLASER", kFixed, f.size()));
   const std::size_t n = f.count(1, "FLASER beam count");
@@ -99,7 +99,7 @@ LineResult parse_flaser(Fields& f) {
   scan.message = CarmenScan::Message::flaser;
   scan.start_angle = kFlaserStartAngle;
   scan.angle_increment = flaser_angle_increment(n);
-  scan.max_range = kFlaserMaxRange;
+  scan.max_range = max_range;
   scan.ranges = parse_ranges(f, 2, n);
   scan.laser_pose = f.pose(2 + n, "laser pose");
   scan.robot_pose = f.pose(5 + n, "odometry pose");
@@ -163,10 +163,10 @@ LineResult parse_odom(Fields& f) {
   return finish(f, std::move(odom));
 }
 
-LineResult parse_line(std::string_view line) {
+LineResult parse_line(std::string_view line, double flaser_max_range) {
   Fields f(line);
   if (f.size() == 0 || f[0].front() == '#') return {};
-  if (f[0] == "FLASER") return parse_flaser(f);
+  if (f[0] == "FLASER") return parse_flaser(f, flaser_max_range);
   if (f[0] == "ROBOTLASER1") return parse_robotlaser1(f);
   if (f[0] == "ODOM") return parse_odom(f);
   return {};
@@ -190,12 +190,17 @@ double flaser_angle_increment(std::size_t beams) {
 
 CarmenLogReader::CarmenLogReader(const std::string& path) : path_(path), in_(path) {
   if (!in_) throw file_error(path, std::string("cannot open: ") + std::strerror(errno));
+  flaser_no_return_ = learn_flaser_no_return_code(path);
+}
+
+double CarmenLogReader::flaser_max_range() const {
+  return flaser_no_return_ ? static_cast<double>(flaser_no_return_->range) : kFlaserMaxRange;
 }
 
 std::optional<CarmenMessage> CarmenLogReader::next() {
   while (std::getline(in_, text_)) {
     ++line_;
-    LineResult result = parse_line(text_);
+    LineResult result = parse_line(text_, flaser_max_range());
     if (!result.problem.empty()) {
       report(result.problem);
       continue;
@@ -224,6 +229,7 @@ CarmenLog read_carmen_log(const std::string& path) {
   }
   log.malformed_lines = reader.malformed_lines();
   log.problems = reader.problems();
+  log.flaser_no_return = reader.flaser_no_return();
   return log;
 }
 

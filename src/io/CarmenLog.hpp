@@ -27,12 +27,14 @@
 
 #include "core/Types.hpp"
 #include "io/FileError.hpp"
+#include "io/NoReturnCode.hpp"
 
 namespace uavslam::io {
 
-// FLASER carries no maximum range. The SICK LMS 2xx these logs were recorded with reports a
-// missing return as a reserved code at the top of its 13-bit centimetre range (8183..8191 cm):
-// intel.clf writes 81.83, fr079.clf 81.91. Ranges at or above this default are "no return".
+// FLASER carries no maximum range: the reader learns the log's no-return code from its ranges
+// (NoReturnCode.hpp). Without one (every beam returned), the default is the SICK LMS 2xx's: it
+// reports a missing return as a reserved code at the top of its 13-bit centimetre range
+// (8183..8191 cm; intel.clf writes 81.83, fr079.clf 81.91).
 inline constexpr double kFlaserMaxRange = 81.83;  // m
 
 // The number of problem descriptions kept; malformed_lines counts them all.
@@ -87,7 +89,8 @@ inline constexpr double kFlaserStartAngle = -1.5707963267948966;  // -90 deg
 // interest are passed over; malformed ones are counted and described.
 class CarmenLogReader {
  public:
-  // Throws FileError naming the path when it cannot be opened.
+  // Throws FileError naming the path when it cannot be opened. Reads the file once first, to
+  // learn its FLASER no-return code.
   explicit CarmenLogReader(const std::string& path);
 
   // The next FLASER/ROBOTLASER1/ODOM message in file order; nullopt at the end of the file.
@@ -95,6 +98,10 @@ class CarmenLogReader {
 
   std::size_t malformed_lines() const { return malformed_lines_; }
   const std::vector<std::string>& problems() const { return problems_; }
+  // The FLASER no-return code learned from the log; none if every beam returned.
+  const std::optional<NoReturnCode>& flaser_no_return() const { return flaser_no_return_; }
+  // FLASER ranges at or above this are no return: the learned code, or kFlaserMaxRange.
+  double flaser_max_range() const;
 
  private:
   void report(const std::string& reason);
@@ -105,12 +112,14 @@ class CarmenLogReader {
   std::size_t line_ = 0;
   std::size_t malformed_lines_ = 0;
   std::vector<std::string> problems_;
+  std::optional<NoReturnCode> flaser_no_return_;
 };
 
 struct CarmenLog {
   std::vector<CarmenMessage> messages;  // file order
   std::size_t malformed_lines = 0;
   std::vector<std::string> problems;  // the first kMaxReportedProblems, "path:line: reason"
+  std::optional<NoReturnCode> flaser_no_return;
 };
 
 CarmenLog read_carmen_log(const std::string& path);

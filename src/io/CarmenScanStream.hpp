@@ -36,6 +36,7 @@ class CarmenScanStream {
   std::size_t scans() const { return scans_; }
   std::size_t malformed_lines() const { return reader_.malformed_lines(); }
   const CarmenTimeline& timeline() const { return timeline_; }
+  const std::optional<NoReturnCode>& flaser_no_return() const { return reader_.flaser_no_return(); }
   const std::string& path() const { return path_; }
 
  private:

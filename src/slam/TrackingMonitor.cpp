@@ -70,4 +70,11 @@ TrackingStatus TrackingMonitor::unmatched(const Scan& scan, const ScanReport& re
   return {Tracking::Lost, reason};
 }
 
+void TrackingCounts::add(const TrackingStatus& status) {
+  ++states[static_cast<std::size_t>(status.state)];
+  if (status.state != Tracking::Tracking) {
+    ++reasons[to_string(status.state) + ": " + to_string(status.reason)];
+  }
+}
+
 }  // namespace uavslam

@@ -10,7 +10,9 @@
 //             too_few_points, no_imu; repeated_rejections for any other).
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -38,6 +40,14 @@ struct TrackingStatus {
 
 std::string to_string(Tracking state);
 std::string to_string(TrackingReason reason);
+
+// A run's tally: scans per state, and per "state: reason" for those not tracking.
+struct TrackingCounts {
+  std::array<std::size_t, 3> states{};  // by Tracking
+  std::map<std::string, std::size_t> reasons;
+
+  void add(const TrackingStatus& status);
+};
 
 class TrackingMonitor {
  public:

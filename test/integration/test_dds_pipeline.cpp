@@ -113,7 +113,8 @@ TEST_F(DdsPipeline, ThreeProcessesTrackTheShortFlight) {
 
 // The plain corridor (issue 17) over DDS: along its axis the scan is blind. Every airborne status
 // says so (degraded: degenerate), and every pose's covariance says which way: metres along the
-// axis, centimetres across. The vehicle is carried down the corridor by the IMU.
+// axis, centimetres across. The vehicle is carried down the corridor by the IMU, and a rejected
+// scan still gets its pose, dead-reckoned (quality 0), so the pose stream has no holes.
 TEST_F(DdsPipeline, ThePlainCorridorsBlindAxisIsOnTheWire) {
   const std::string scenario =
       std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/plain_corridor.yaml";
@@ -123,7 +124,7 @@ TEST_F(DdsPipeline, ThePlainCorridorsBlindAxisIsOnTheWire) {
   std::condition_variable changed;
   std::vector<Pose> poses;
   std::size_t blind_poses = 0;  // axis sigma over ten times the lateral one
-  std::size_t statuses = 0, degenerate = 0;
+  std::size_t statuses = 0, degenerate = 0, rejected = 0, dead_reckoned = 0;
   std::uint64_t last_status_scan = 0;
   dds::Reader<msg::PoseWithCovarianceStampedPubSubType> pose_reader(
       ground, dds::topic_name("uav1", dds::kPoseTopic), "state_reader",
@@ -132,6 +133,7 @@ TEST_F(DdsPipeline, ThePlainCorridorsBlindAxisIsOnTheWire) {
         poses.push_back(dds::from_msg(m));
         const auto& c = m.covariance();
         blind_poses += c[0] > 100.0 * c[7] && c[7] > 0.0 && c[35] > 0.0;
+        dead_reckoned += m.quality() == 0.0f;
       });
   dds::Reader<msg::MatcherStatusPubSubType> status_reader(
       ground, dds::topic_name("uav1", dds::kMatcherStatusTopic), "status_reader",
@@ -140,6 +142,7 @@ TEST_F(DdsPipeline, ThePlainCorridorsBlindAxisIsOnTheWire) {
           std::lock_guard<std::mutex> lock(mutex);
           last_status_scan = m.scan_seq();
           ++statuses;
+          rejected += m.outcome() != "accepted" && m.outcome() != "map_initialised";
           degenerate += m.tracking() == "degraded" && m.tracking_reason() == "degenerate" &&
                         m.degenerate_directions() == 1;
         }
@@ -174,6 +177,11 @@ TEST_F(DdsPipeline, ThePlainCorridorsBlindAxisIsOnTheWire) {
   ASSERT_GE(poses.size(), 950u) << "of 1081 scans\n" << matcher.log();
   EXPECT_GE(degenerate, statuses * 9 / 10) << statuses << " statuses";
   EXPECT_GE(blind_poses, poses.size() * 9 / 10) << poses.size() << " poses";
+  EXPECT_GT(rejected, 0u) << "the flight has rejected scans (error_increased)";
+  // Both streams are reliable with a history of 10: a loaded machine may drop a few samples.
+  EXPECT_LE(dead_reckoned, rejected);
+  EXPECT_GE(dead_reckoned * 10, rejected * 9) << "each rejected scan's pose, carried by the IMU";
+  EXPECT_GE(poses.size() * 100, statuses * 98) << "a pose for every scan";
   sim::FlightSimulator truth(io::load_scenario(scenario));
   std::vector<Pose> ground_truth;
   for (const Pose& p : poses) ground_truth.push_back(truth.ground_truth_at(p.stamp));

@@ -180,6 +180,12 @@ void AutopilotSession::tick(double host_now, const Send& send) {
 }
 
 void AutopilotSession::send_pose(const PoseEstimate& estimate, const Send& send) {
+  // A pose no scan confirmed was carried by the IMU's motion: the autopilot's own estimator has
+  // that IMU, and would count it twice.
+  if (!(estimate.quality > 0.0f)) {
+    ++counts_.poses_withheld;
+    return;
+  }
   const std::uint8_t reset = reset_counter_.update(estimate);
   if (options_.pose_message == PoseMessage::kOdometry) {
     send(writer_.frame(kOdometry, encode(odometry(estimate, reset))));

@@ -53,6 +53,7 @@ struct SessionCounts {
   std::uint64_t imu_samples = 0;       // handed on
   std::uint64_t timesync_answers = 0;  // to our requests
   std::uint64_t poses_sent = 0;
+  std::uint64_t poses_withheld = 0;  // quality 0: dead-reckoned, no scan confirmed them
   std::uint64_t reboots = 0;  // its HEARTBEAT back after a silence (or a lost link) or renumbered
   IntervalRequestCounts interval_requests;  // SET_MESSAGE_INTERVAL
 };

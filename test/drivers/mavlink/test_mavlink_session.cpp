@@ -284,6 +284,24 @@ TEST(MavlinkStreamRequests, ZeroRatesAskForNothing) {
   EXPECT_EQ(link.session().counts().interval_requests.sent, 0u);
 }
 
+// The autopilot fuses our matches; a pose the IMU alone carried (quality 0, dead-reckoned) would
+// give it its own IMU a second time.
+TEST(MavlinkPoses, ADeadReckonedPoseIsWithheldFromTheAutopilot) {
+  SessionLink link(0.0, 0.0);
+  link.heartbeat(0.0);
+  PoseEstimate estimate;
+  estimate.pose.stamp = 1.0;
+  estimate.quality = 0.8f;
+  link.session().send_pose(estimate, [&](const Bytes& bytes) { link.deliver(bytes, 1.0); });
+  estimate.quality = 0.0f;
+  estimate.pose.stamp = 1.1;
+  std::size_t sent = 0;
+  link.session().send_pose(estimate, [&](const Bytes&) { ++sent; });
+  EXPECT_EQ(sent, 0u);
+  EXPECT_EQ(link.session().counts().poses_sent, 1u);
+  EXPECT_EQ(link.session().counts().poses_withheld, 1u);
+}
+
 TEST(MavlinkStreamRequests, AGroundStationHeartbeatIsNotTheAutopilot) {
   SessionLink link;
   FrameWriter ground_station(255, 190);

@@ -6,7 +6,7 @@
 namespace uavslam::dds {
 namespace {
 
-TEST(MatcherMessages, QualityFallsFromOneForAPerfectFitToZeroAtTheRejectionLimit) {
+TEST(MatcherMessages, QualityFallsFromOneForAPerfectFitToTheLeastAtTheRejectionLimit) {
   SlamConfig config;  // icp.max_error_after 0.05 m^2
   ScanReport report;
   report.outcome = ScanOutcome::Accepted;
@@ -15,7 +15,11 @@ TEST(MatcherMessages, QualityFallsFromOneForAPerfectFitToZeroAtTheRejectionLimit
   report.error_after = 0.025;
   EXPECT_FLOAT_EQ(pose_quality(report, config), 0.5f);
   report.error_after = 0.2;
-  EXPECT_FLOAT_EQ(pose_quality(report, config), 0.0f);
+  EXPECT_FLOAT_EQ(pose_quality(report, config), static_cast<float>(kLeastMatchQuality));
+  report.outcome = ScanOutcome::ErrorIncreased;  // rejected, the pose carried by the prior
+  report.error_after = 0.001;
+  report.dead_reckoned = true;
+  EXPECT_FLOAT_EQ(pose_quality(report, config), 0.0f) << "no scan confirmed it";
   report.outcome = ScanOutcome::MapInitialised;
   EXPECT_FLOAT_EQ(pose_quality(report, config), 1.0f) << "the scan that seeded the map";
 }

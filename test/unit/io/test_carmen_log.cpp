@@ -7,6 +7,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "io/CarmenLog.hpp"
+#include "io/NoReturnCode.hpp"
 
 namespace uavslam::io {
 namespace {
@@ -249,6 +251,57 @@ TEST_F(CarmenLogTest, TheLaserMountComesFromTheTwoPosesOfTheMessage) {
   EXPECT_TRUE(to_scan_geometry(scan).mount.isApprox(mount));
 }
 
+// "FLASER 180" with every beam at `range`, except `missing` beams written as `code`.
+std::string flaser_with_code(double range, int missing, const std::string& code) {
+  std::string line = "FLASER 180";
+  for (int i = 0; i < 180; ++i) line += " " + (i < missing ? code : std::to_string(range));
+  return line + " 0 0 0 0 0 0 1.0 nohost 0\n";
+}
+
+TEST(RangeTally, TheLargestRangeRepeatedFarMoreThanItsNeighboursIsTheCode) {
+  RangeTally tally;
+  for (int i = 0; i < 30; ++i) tally.add(50.0f);
+  for (int i = 0; i < 2; ++i) tally.add(49.8f);
+  tally.add(12.5f);
+  const std::optional<NoReturnCode> code = tally.no_return_code();
+  ASSERT_TRUE(code);
+  EXPECT_EQ(code->range, 50.0f);
+  EXPECT_EQ(code->readings, 30u);
+}
+
+TEST(RangeTally, RealRangesMakeNoCode) {
+  RangeTally few;  // the largest range, but seen only a few times: a real far wall
+  for (int i = 0; i < 5; ++i) few.add(26.37f);
+  few.add(3.0f);
+  EXPECT_FALSE(few.no_return_code());
+  RangeTally spread;  // repeated, but so are the ranges just below it: a wall at that distance
+  for (int i = 0; i < 100; ++i) spread.add(30.0f);
+  for (int i = 0; i < 20; ++i) spread.add(29.9f);
+  EXPECT_FALSE(spread.no_return_code());
+  EXPECT_FALSE(RangeTally().no_return_code());
+}
+
+TEST_F(CarmenLogTest, TheReaderLearnsTheLogsNoReturnCode) {
+  // A scanner that writes 50.00 for no return (as aces.clf): below the SICK's 81.83 default.
+  const std::string with_code =
+      flaser_with_code(4.0, 10, "50.00") + flaser_with_code(5.0, 15, "50.00");
+  const CarmenLog log = read_carmen_log(write_log(with_code));
+  ASSERT_TRUE(log.flaser_no_return);
+  EXPECT_EQ(log.flaser_no_return->range, 50.0f);
+  EXPECT_EQ(log.flaser_no_return->readings, 25u);
+  const CarmenScan& scan = scan_at(log, 0);
+  EXPECT_FALSE(scan.is_return(0));
+  EXPECT_TRUE(scan.is_return(10));
+  EXPECT_FALSE(to_core_scan(scan, std::make_shared<const ScanGeometry>(to_scan_geometry(scan)), 0)
+                   .geometry->max_range >= 50.0f);
+}
+
+TEST_F(CarmenLogTest, WithoutACodeTheSickDefaultStays) {
+  const CarmenLog log = read_carmen_log(write_log(flaser_line(180, 1.0)));
+  EXPECT_FALSE(log.flaser_no_return);
+  EXPECT_DOUBLE_EQ(scan_at(log, 0).max_range, kFlaserMaxRange);
+}
+
 // The real Freiburg benchmark logs, when the shared data folder is present.
 std::string freiburg_log(const std::string& name) {
   return std::string(UAVSLAM_SOURCE_DIR) + "/../shared/data/freiburg/" + name;
@@ -312,6 +365,19 @@ TEST(CarmenLogFreiburg, Fr079LogReadsWhole) {
   EXPECT_EQ(summary.flaser, 4934u);
   EXPECT_EQ(summary.odom, 8951u);
   EXPECT_EQ(summary.beam_counts, std::set<std::size_t>{360});
+}
+
+// Three scanners, three codes: the SICK's 81.83 and 81.91 (Intel, FR079) and ACES's 50.00.
+TEST(CarmenLogFreiburg, EachLogsNoReturnCodeIsLearned) {
+  const std::vector<std::pair<std::string, float>> logs = {
+      {"intel.clf", 81.83f}, {"fr079.clf", 81.91f}, {"aces.clf", 50.0f}};
+  for (const auto& [name, expected] : logs) {
+    const std::string path = freiburg_log(name);
+    if (!exists(path)) GTEST_SKIP() << "Freiburg data absent: " << path << " not found";
+    const std::optional<NoReturnCode> code = learn_flaser_no_return_code(path);
+    ASSERT_TRUE(code) << name;
+    EXPECT_EQ(code->range, expected) << name;
+  }
 }
 
 }  // namespace
