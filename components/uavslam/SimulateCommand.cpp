@@ -26,7 +26,8 @@ struct SimulateOptions {
   std::string out;
   std::string config;
   std::vector<std::string> overrides;
-  std::string log;  // MCAP recording of the flight, when given
+  std::string log;                    // MCAP recording of the flight, when given
+  std::optional<std::uint64_t> seed;  // the sensors' noise seed instead of the scenario's
   bool quiet = false;
 };
 
@@ -65,7 +66,8 @@ void write_outputs(const std::filesystem::path& out, const SlamRun& run,
 }
 
 int run_simulate(const SimulateOptions& o) {
-  const sim::Scenario scenario = io::load_scenario(o.scenario);
+  sim::Scenario scenario = io::load_scenario(o.scenario);
+  if (o.seed) scenario.seed = *o.seed;
   const SlamConfig config = load_config(o.config, o.overrides);
   if (!o.quiet) std::cerr << "simulating " << scenario.name << " ...\n";
   const SensorLog log = simulate_sensors(scenario);
@@ -110,6 +112,9 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
                   "also write the flight's sensor data as an MCAP recording: channels scan, imu "
                   "and ground_truth, as the sensor processes publish them (replay it with "
                   "lidar_driver/imu_bridge --source mcap:FILE, map it with uavslam offline --log)");
+  cmd->add_option("--seed", options->seed,
+                  "seed of the sensors' noise instead of the scenario's: the same flight with "
+                  "other noise, for Monte Carlo runs (test/bench/monte_carlo.sh)");
   cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
   cmd->callback([options, &exit_code] { exit_code = run_simulate(*options); });
 }

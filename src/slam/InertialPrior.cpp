@@ -22,6 +22,19 @@ Eigen::Matrix3d map_rotation(const ImuSample& sample, double heading_correction)
   return (yaw_rotation(heading_correction) * sample.orientation.normalized()).toRotationMatrix();
 }
 
+// The accelerometer's axes the scan measures, each on its own: an axis whose direction in the map
+// lies mostly (over half, as observed_basis) in the observed directions. Not the observed
+// directions turned into the body (a projection that would hold a slanted mix of the axes): tilted
+// a few degrees, the vertical axis leans into a blind horizontal direction, and height fixes would
+// then write a bias into that axis which the blind direction integrates, unchecked, ever after.
+Eigen::Matrix3d observed_body_axes(const Eigen::Matrix3d& seen, const Eigen::Matrix3d& body) {
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    if ((seen * body.col(i)).squaredNorm() > 0.5) axes(i, i) = 1.0;
+  }
+  return axes;
+}
+
 }  // namespace
 
 InertialPrior::InertialPrior(const SlamConfig::Motion& noise, double max_gap)
@@ -122,7 +135,7 @@ void InertialPrior::update(State& s, const ScanReport& report) const {
   StateMatrix keep = StateMatrix::Zero();
   keep.block<3, 3>(0, 0) = seen;
   keep.block<3, 3>(3, 3) = seen;
-  keep.block<3, 3>(6, 6) = body.transpose() * seen * body;
+  keep.block<3, 3>(6, 6) = observed_body_axes(seen, body);
   const Eigen::MatrixXd K = keep * s.P * H.transpose() * S.inverse();
   s.x += K * innovation;
   // Joseph form: right for any gain, and stays symmetric and positive however small Rz is.

@@ -114,6 +114,28 @@ TEST(InertialPrior, ABlindDirectionIsNeitherMeasuredNorPulled) {
   EXPECT_GT((*p.covariance)(0, 0), 100.0 * (*p.covariance)(1, 1));
 }
 
+// Tilted to accelerate, the accelerometer's forward axis leans into the height the scan fixes; an
+// error in those height fixes is still no measurement of that axis's bias, which the blind forward
+// direction would integrate unchecked: it stays where it started (zero), however the height errs.
+TEST(InertialPrior, HeightFixesWriteNoBiasIntoABlindAxis) {
+  Flight f;
+  // Down a corridor's axis (x), facing along it, speeding up and slowing down: pitched throughout.
+  f.trajectory = sim::Trajectory(
+      {{0.0, Vec3(0, 0, 1), 0.0}, {3.0, Vec3(3, 0, 1.2), 0.0}, {6.0, Vec3(5, 0, 1.1), 0.0}});
+  f.fed_until = -kImuPeriod;
+  f.feed_to(0.0);
+  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
+  const Eigen::Matrix3d blind_x = Eigen::Vector3d(0, 1, 1).asDiagonal();
+  for (double t = kScanPeriod; t <= 6.0 + 1e-9; t += kScanPeriod) {
+    f.feed_to(t);
+    f.prior.motion_to(t, 0.0);
+    const Vec3 height_error(0.0, 0.0, 0.02 * std::sin(t));
+    f.prior.scan_posed(report_at(f.trajectory, t, blind_x, height_error), 0.0);
+  }
+  EXPECT_LT(std::abs(f.prior.bias().x()), 1e-6) << f.prior.bias().transpose();
+  EXPECT_GT(std::abs(f.prior.bias().z()), 1e-4) << "the height errors are taken as a bias there";
+}
+
 TEST(InertialPrior, RefusesSamplesItCannotIntegrate) {
   InertialPrior prior(SlamConfig::Motion{}, 0.1);
   ImuSample good;

@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Monte Carlo over the sensors' noise: each scenario flown with seeds 1..N (uavslam simulate --seed),
+# one table row per scenario: ATE horizontal RMSE (m) mean, median and worst over the seeds, the
+# vertical RMSE's mean, and the mean NEES. One seed's figure says little where the estimate is chaotic (a corridor, where one
+# keyframe decides the rest of the flight); the spread over seeds is what a change must improve.
+# Usage: test/bench/monte_carlo.sh [--build-dir DIR] [--seeds N] [--config FILE]
+#                                  [--set key=value ...] [scenario ...]
+# (default: seeds 8, config/slam.yaml, the scenarios corridor and plain_corridor)
+set -euo pipefail
+
+repo_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+build_dir="${repo_dir}/build"
+seeds=8
+config="${repo_dir}/config/slam.yaml"
+overrides=()
+scenarios=()
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --build-dir) build_dir="$2"; shift 2 ;;
+    --seeds) seeds="$2"; shift 2 ;;
+    --config) config="$2"; shift 2 ;;
+    --set) overrides+=(--set "$2"); shift 2 ;;
+    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
+    -*) echo "monte_carlo.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
+    *) scenarios+=("$1"); shift ;;
+  esac
+done
+[[ ${#scenarios[@]} -gt 0 ]] || scenarios=(corridor plain_corridor)
+[[ "${seeds}" =~ ^[1-9][0-9]*$ ]] || { echo "monte_carlo.sh: --seeds '${seeds}' is not a positive count" >&2; exit 2; }
+uavslam="${build_dir}/bin/uavslam"
+[[ -x "${uavslam}" ]] || { echo "monte_carlo.sh: ${uavslam} not built (make build)" >&2; exit 2; }
+out_dir="$(mktemp -d)"
+trap 'rm -rf "${out_dir}"' EXIT
+
+echo "| scenario | seeds | ATE horizontal mean | median | worst | ATE vertical mean | NEES mean |"
+echo "|---|---|---|---|---|---|---|"
+for scenario in "${scenarios[@]}"; do
+  file="${repo_dir}/config/scenarios/${scenario}.yaml"
+  [[ -f "${file}" ]] || { echo "monte_carlo.sh: no scenario ${file}" >&2; exit 2; }
+  for seed in $(seq 1 "${seeds}"); do
+    echo "running ${scenario}, seed ${seed} of ${seeds} ..." >&2
+    "${uavslam}" simulate --quiet --scenario "${file}" --config "${config}" --seed "${seed}" \
+      --out "${out_dir}/${scenario}/${seed}" "${overrides[@]}" > /dev/null
+  done
+  python3 - "${out_dir}/${scenario}" "${scenario}" <<'PY'
+import json, pathlib, statistics, sys
+runs = [json.load(open(p)) for p in sorted(pathlib.Path(sys.argv[1]).glob("*/summary.json"))]
+ate = [r["trajectory_errors"]["ate_horizontal_rmse_m"] for r in runs]
+vertical = [r["trajectory_errors"]["ate_vertical_rmse_m"] for r in runs]
+nees = [r["consistency"]["nees_mean"] for r in runs if "consistency" in r]
+nees_text = "%.1f" % statistics.mean(nees) if nees else "-"
+print("| %s | %d | %.3f m | %.3f m | %.3f m | %.3f m | %s |" % (sys.argv[2], len(ate),
+      statistics.mean(ate), statistics.median(ate), max(ate), statistics.mean(vertical), nees_text))
+PY
+done
