@@ -1,4 +1,5 @@
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -56,6 +57,22 @@ struct Flight {
       fed_until = s;
     }
   }
+
+  // The first scan, posed at the truth, with the samples up to it.
+  void start() {
+    fed_until = -kImuPeriod;
+    feed_to(0.0);
+    prior.scan_posed(report_at(trajectory, 0.0), 0.0);
+  }
+
+  // Every scan up to `end`: predicted, then posed as `scan(t)` reports it.
+  void fly_to(double end, const std::function<ScanReport(double)>& scan) {
+    for (double t = kScanPeriod; t <= end + 1e-9; t += kScanPeriod) {
+      feed_to(t);
+      prior.motion_to(t, 0.0);
+      prior.scan_posed(scan(t), 0.0);
+    }
+  }
 };
 
 // Preintegration: the specific force, turned by the attitude, less gravity, integrated twice from
@@ -78,14 +95,8 @@ TEST(InertialPrior, IntegratesTheSimulatorsTrueMotion) {
 TEST(InertialPrior, MatchedPosesEstimateTheBiasAndTheVelocity) {
   Flight f;
   f.bias = Vec3(0.05, -0.03, 0.08);
-  f.fed_until = -kImuPeriod;
-  f.feed_to(0.0);
-  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
-  for (double t = kScanPeriod; t <= 6.0 + 1e-9; t += kScanPeriod) {
-    f.feed_to(t);
-    f.prior.motion_to(t, 0.0);
-    f.prior.scan_posed(report_at(f.trajectory, t), 0.0);
-  }
+  f.start();
+  f.fly_to(6.0, [&](double t) { return report_at(f.trajectory, t); });
   EXPECT_LT((f.prior.bias() - f.bias).norm(), 0.01) << f.prior.bias().transpose();
   EXPECT_LT((f.prior.velocity() - f.trajectory.velocity_at(6.0)).norm(), 0.01);
 }
@@ -94,15 +105,9 @@ TEST(InertialPrior, MatchedPosesEstimateTheBiasAndTheVelocity) {
 // pull the state, which stays with the integrated motion.
 TEST(InertialPrior, ABlindDirectionIsNeitherMeasuredNorPulled) {
   Flight f;
-  f.fed_until = -kImuPeriod;
-  f.feed_to(0.0);
-  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
+  f.start();
   const Eigen::Matrix3d blind_x = Eigen::Vector3d(0, 1, 1).asDiagonal();
-  for (double t = kScanPeriod; t <= 3.0 + 1e-9; t += kScanPeriod) {
-    f.feed_to(t);
-    f.prior.motion_to(t, 0.0);
-    f.prior.scan_posed(report_at(f.trajectory, t, blind_x, Vec3(1.0, 0, 0)), 0.0);
-  }
+  f.fly_to(3.0, [&](double t) { return report_at(f.trajectory, t, blind_x, Vec3(1.0, 0, 0)); });
   f.feed_to(3.0 + kScanPeriod);
   const MotionPrediction p = f.prior.motion_to(3.0 + kScanPeriod, 0.0);
   ASSERT_TRUE(p.covariance);
@@ -122,16 +127,11 @@ TEST(InertialPrior, HeightFixesWriteNoBiasIntoABlindAxis) {
   // Down a corridor's axis (x), facing along it, speeding up and slowing down: pitched throughout.
   f.trajectory = sim::Trajectory(
       {{0.0, Vec3(0, 0, 1), 0.0}, {3.0, Vec3(3, 0, 1.2), 0.0}, {6.0, Vec3(5, 0, 1.1), 0.0}});
-  f.fed_until = -kImuPeriod;
-  f.feed_to(0.0);
-  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
+  f.start();
   const Eigen::Matrix3d blind_x = Eigen::Vector3d(0, 1, 1).asDiagonal();
-  for (double t = kScanPeriod; t <= 6.0 + 1e-9; t += kScanPeriod) {
-    f.feed_to(t);
-    f.prior.motion_to(t, 0.0);
-    const Vec3 height_error(0.0, 0.0, 0.02 * std::sin(t));
-    f.prior.scan_posed(report_at(f.trajectory, t, blind_x, height_error), 0.0);
-  }
+  f.fly_to(6.0, [&](double t) {
+    return report_at(f.trajectory, t, blind_x, Vec3(0.0, 0.0, 0.02 * std::sin(t)));
+  });
   EXPECT_LT(std::abs(f.prior.bias().x()), 1e-6) << f.prior.bias().transpose();
   EXPECT_GT(std::abs(f.prior.bias().z()), 1e-4) << "the height errors are taken as a bias there";
 }
@@ -159,9 +159,7 @@ TEST(InertialPrior, RefusesSamplesItCannotIntegrate) {
 // A gap in the samples longer than max_gap: no prediction rather than one from a stale sample.
 TEST(InertialPrior, GivesNoPredictionAcrossAGapInTheSamples) {
   Flight f;
-  f.fed_until = -kImuPeriod;
-  f.feed_to(0.0);
-  f.prior.scan_posed(report_at(f.trajectory, 0.0), 0.0);
+  f.start();
   const MotionPrediction p = f.prior.motion_to(0.5, 0.0);
   EXPECT_FALSE(p.covariance);
   EXPECT_EQ(p.motion, Vec3::Zero());
