@@ -106,7 +106,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
     ++run.scans_in;
     const Vec3& truth = log.ground_truth[i].position;
     const std::optional<eval::Nees> nees =
-        eval::nees(report.pose.position - truth, report.covariance);
+        eval::nees(report.pose.position - truth, report.absolute_covariance());
     if (report.accepted()) {
       run.estimate.push_back(report.pose);
       run.ground_truth.push_back(log.ground_truth[i]);
@@ -114,11 +114,12 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
       if (report.prior_distance > 0.0) run.prior_distances.push_back(report.prior_distance);
     }
     run.tracking.add(result.tracking);
-    run.trace.push_back(
-        {scan.stamp, report.outcome, report.points_used, report.error_before, report.error_after,
-         report.iterations, report.map_updated, report.pose.position, truth,
-         run.scan_seconds.back() * 1e3, report.seen.degenerate, report.seen.weakest_fraction,
-         report.covariance.diagonal().cwiseSqrt(), report.prior_distance, result.tracking, nees});
+    run.trace.push_back({scan.stamp, report.outcome, report.points_used, report.error_before,
+                         report.error_after, report.iterations, report.map_updated,
+                         report.pose.position, truth, run.scan_seconds.back() * 1e3,
+                         report.seen.degenerate, report.seen.weakest_fraction,
+                         report.absolute_covariance().diagonal().cwiseSqrt(), report.prior_distance,
+                         result.tracking, nees});
     if (progress && i % 400 == 0) progress(i, log.scans.size());
   }
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();

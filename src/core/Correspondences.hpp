@@ -9,9 +9,10 @@
 namespace uavslam {
 
 struct Correspondences {
-  Points scan;                // m_i
-  Points map;                 // d_i
-  std::vector<Vec3> weights;  // omega_i per axis (eq. 5.17)
+  Points scan;                         // m_i
+  Points map;                          // d_i
+  std::vector<std::size_t> map_index;  // d_i's index in the world map (which keyframe added it)
+  std::vector<Vec3> weights;           // omega_i per axis (eq. 5.17)
   std::vector<Vec3> normals;  // empty (point-to-point), or per pair: the horizontal unit normal
                               // of the wall at d_i, zero where none is known
   std::vector<Vec3> scan_normals;  // empty, or per pair: the wall's normal at m_i from the scan

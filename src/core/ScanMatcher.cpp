@@ -38,6 +38,7 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
   Correspondences pairs;
   pairs.scan.reserve(scan.points.size());
   pairs.map.reserve(scan.points.size());
+  pairs.map_index.reserve(scan.points.size());
   pairs.weights.reserve(scan.points.size());
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
     const Vec3& m = scan.points[i];
@@ -46,6 +47,7 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
     if (max_distance > 0.0 && w.dot((m - d).cwiseAbs2()) > max_squared) continue;
     pairs.scan.push_back(m);
     pairs.map.push_back(d);
+    pairs.map_index.push_back(nearest[i].index);
     pairs.weights.push_back(w);
     if (with_normals) pairs.normals.push_back(map.normals()[nearest[i].index]);
     if (with_scan_normals) pairs.scan_normals.push_back(scan.normals[i]);

@@ -100,7 +100,8 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
       report.outcome = ScanOutcome::DisagreesWithPrior;
       return carried_by_prior(report, start, prediction);
     }
-    match_noise_.add(*distance);
+    match_noise_.add(match.position - start.position, report.seen.observed, report.seen.covariance,
+                     predicted_covariance(prediction, start.stamp));
   }
 
   // The heading the scan agreed with becomes the correction for this and later scans.
@@ -113,6 +114,8 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   // Steps 6-7: report the new pose; a keyframe after enough motion.
   pose_ = {scan.stamp, position, orientation};
   covariance_ = report.covariance;
+  if (config_.degeneracy.threshold > 0.0) map_covariance_ = map_part(report, match);
+  report.map_covariance = map_covariance_;
   report.pose = pose_;
   if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
   return finish(report);
@@ -127,6 +130,7 @@ ScanReport SlamPipeline::carried_by_prior(ScanReport& report, const Pose& start,
   pose_ = start;
   report.pose = pose_;
   report.covariance = covariance_;
+  report.map_covariance = map_covariance_;
   report.dead_reckoned = true;
   return finish(report);
 }
@@ -139,9 +143,9 @@ std::optional<PriorDistance> SlamPipeline::distance_from_prior(
     const ScanReport& report, const MatchResult& match, const Pose& start,
     const MotionPrediction& prediction) const {
   if (!prediction.covariance || config_.degeneracy.threshold <= 0.0) return std::nullopt;
-  return uavslam::distance_from_prior(match.position - start.position, report.seen.observed,
-                                      match_noise_.scale() * report.seen.covariance +
-                                          predicted_covariance(prediction, start.stamp));
+  return uavslam::distance_from_prior(
+      match.position - start.position, report.seen.observed,
+      match_noise_.scaled(report.seen.covariance) + predicted_covariance(prediction, start.stamp));
 }
 
 // The seed trusts the source (heading: source); otherwise the heading is estimated in every scan
@@ -202,8 +206,17 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
   const Eigen::Matrix3d prior = predicted_covariance(prediction, start.stamp);
   const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - report.seen.observed;
   report.covariance =
-      match_noise_.scale() * report.seen.covariance + blind * prior * blind.transpose();
+      match_noise_.scaled(report.seen.covariance) + blind * prior * blind.transpose();
   return start.position + report.seen.observed * (match.position - start.position);
+}
+
+// How well the map the scan matched is placed (extensions/MapUncertainty), in the directions the
+// scan fixed. In a blind direction the position is the prior's, and so is its covariance: the
+// motion prior's own already covers everything since its start, and a keyframe that passed it
+// into the map would count it again at the next.
+Eigen::Matrix3d SlamPipeline::map_part(const ScanReport& report, const MatchResult& match) const {
+  const Eigen::Matrix3d& P = report.seen.observed;
+  return P * map_uncertainty_.of_points(match.pairs.map_index) * P.transpose();
 }
 
 // The covariance of the predicted position: the prior's own, turned into the corrected heading;
@@ -260,6 +273,7 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
   if (config_.icp.metric == IcpMetric::PointToLine) {
     normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
   }
+  map_uncertainty_.add_keyframe(map_.size(), report.absolute_covariance());
   report.added_points = map_.add_points(aligned, normals);
   last_map_update_position_ = pose_.position;
   last_map_update_heading_ = heading_of(pose_.orientation);

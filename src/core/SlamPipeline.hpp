@@ -15,6 +15,7 @@
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/MapUncertainty.hpp"
 #include "core/extensions/MatchNoise.hpp"
 #include "core/extensions/PriorAgreement.hpp"
 #include "core/extensions/ScanInformation.hpp"
@@ -40,10 +41,17 @@ struct ScanReport {
   // Beyond the seed (degeneracy.threshold > 0): what the scan saw of each direction, and the
   // pose's covariance: the match's in the directions it fixed, the motion prior's in the others.
   Observability seen;
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // m^2, of pose.position
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // m^2, of pose.position in the map
+  // m^2: how well the map points the match paired with are placed (extensions/MapUncertainty);
+  // for a pose carried by the prior, the last match's.
+  Eigen::Matrix3d map_covariance = Eigen::Matrix3d::Zero();
   // The match's distance from the motion prior's prediction, in standard deviations
   // (extensions/PriorAgreement); 0 without a prior that has a covariance.
   double prior_distance = 0.0;
+
+  // The pose's covariance in the map's frame as a whole (from the take-off point): the match's
+  // relative to the map, and the map's own. What goes to those who fly on the pose.
+  Eigen::Matrix3d absolute_covariance() const { return covariance + map_covariance; }
 
   bool accepted() const {
     return outcome == ScanOutcome::Accepted || outcome == ScanOutcome::MapInitialised;
@@ -75,8 +83,6 @@ class SlamPipeline {
   // How many scans ended in each outcome, indexed by ScanOutcome.
   const std::array<std::size_t, kScanOutcomeCount>& outcome_counts() const { return counts_; }
   std::size_t rejected_imu_samples() const { return imu_.rejected(); }
-  // How much the matches' own covariance is scaled up, as their innovations show (MatchNoise).
-  double match_noise_scale() const { return match_noise_.scale(); }
 
  private:
   ScanReport finish(ScanReport report);
@@ -87,6 +93,7 @@ class SlamPipeline {
   bool moved_enough_for_map_update(const Pose& pose) const;
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
   ScanPoints scan_points(const ProjectedScan& projected) const;
+  Eigen::Matrix3d map_part(const ScanReport& report, const MatchResult& match) const;
   Eigen::Matrix3d predicted_covariance(const MotionPrediction& prediction, double stamp) const;
   ScanReport carried_by_prior(ScanReport& report, const Pose& start,
                               const MotionPrediction& prediction);
@@ -109,6 +116,8 @@ class SlamPipeline {
   std::vector<Neighbour> nearest_;  // the last match's neighbours, the next one's warm start
   Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();  // of pose_.position
   MatchNoise match_noise_;
+  MapUncertainty map_uncertainty_;
+  Eigen::Matrix3d map_covariance_ = Eigen::Matrix3d::Zero();  // the last match's
 };
 
 }  // namespace uavslam

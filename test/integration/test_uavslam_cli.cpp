@@ -55,6 +55,21 @@ std::string source(const std::string& relative) {
 
 using UavslamCli = uavslam::test::TempDirTest;
 
+// `uavslam simulate` of a shipped scenario into out; its summary.json.
+nlohmann::json simulate(const fs::path& out, const std::string& scenario, const std::string& config,
+                        const std::string& options = "") {
+  const CommandResult r =
+      run("simulate --quiet --scenario " + source("config/scenarios/" + scenario + ".yaml") +
+          " --config " + source(config) + " " + options + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream json_file(out / "summary.json");
+  return nlohmann::json::parse(json_file);
+}
+
+double ate_horizontal(const nlohmann::json& summary) {
+  return summary.at("trajectory_errors").at("ate_horizontal_rmse_m").get<double>();
+}
+
 TEST_F(UavslamCli, SimulateTracksTheShortFlightAndWritesEveryOutput) {
   const fs::path out = dir / "out";
   const CommandResult r =
@@ -96,21 +111,17 @@ TEST_F(UavslamCli, SimulateTracksTheShortFlightAndWritesEveryOutput) {
 // match; the UAV's config carries the vehicle down the corridor on the IMU's accelerations and
 // says the axis is blind, in the tracking state too.
 TEST_F(UavslamCli, ThePlainCorridorsAxisIsFlaggedAndCarriedByTheImu) {
-  const auto fly = [&](const std::string& config, const std::string& name) {
-    const fs::path out = dir / name;
-    const CommandResult r =
-        run("simulate --quiet --scenario " + source("config/scenarios/plain_corridor.yaml") +
-            " --config " + source(config) + " --out " + out.string());
-    EXPECT_EQ(r.exit_code, 0) << r.output;
-    std::ifstream json_file(out / "summary.json");
-    return std::make_pair(out, nlohmann::json::parse(json_file));
-  };
-  const auto [seed_out, seed] = fly("config/seed.yaml", "seed");
-  EXPECT_GT(seed.at("trajectory_errors").at("ate_horizontal_rmse_m").get<double>(), 3.0);
+  EXPECT_GT(ate_horizontal(simulate(dir / "seed", "plain_corridor", "config/seed.yaml")), 3.0);
 
-  const auto [uav_out, uav] = fly("config/slam.yaml", "uav");
+  const fs::path uav_out = dir / "uav";
+  const nlohmann::json uav = simulate(uav_out, "plain_corridor", "config/slam.yaml");
   // Issue 17's target, with the scenario's own noise seed (test/bench/monte_carlo.sh: other seeds).
-  EXPECT_LE(uav.at("trajectory_errors").at("ate_horizontal_rmse_m").get<double>(), 0.10);
+  EXPECT_LE(ate_horizontal(uav), 0.10);
+  // Its consistency target: the covariance (the match's, the map's, the IMU's along the axis)
+  // covers the error, NEES averaging within [0.5, 2] x the 3 dimensions.
+  const double nees = uav.at("consistency").at("nees_mean").get<double>();
+  EXPECT_GE(nees, 1.5);
+  EXPECT_LE(nees, 6.0);
   // Airborne scans (above 1 m) see one degenerate direction: the corridor's axis.
   std::ifstream csv(uav_out / "scans.csv");
   std::string line;
@@ -131,6 +142,17 @@ TEST_F(UavslamCli, ThePlainCorridorsAxisIsFlaggedAndCarriedByTheImu) {
   EXPECT_GE(flagged, airborne * 95 / 100);
   EXPECT_GE(uav.at("tracking").at("by_reason").at("degraded: degenerate").get<std::size_t>(),
             flagged);
+}
+
+// An IMU whose yaw drifts 2 degrees a minute (yaw_drift.yaml): the shipped UAV config checks the
+// heading against the map (icp.heading periodic_check) and keeps the map straight; the seed's
+// heading, the IMU's as it is, bends it.
+TEST_F(UavslamCli, TheShippedConfigCorrectsTheImusYawDrift) {
+  const double checked = ate_horizontal(simulate(dir / "uav", "yaw_drift", "config/slam.yaml"));
+  const double trusted = ate_horizontal(
+      simulate(dir / "source", "yaw_drift", "config/slam.yaml", "--set icp.heading=source"));
+  EXPECT_LE(checked, 0.25);
+  EXPECT_GT(trusted, 0.3);
 }
 
 // --seed: the same flight with other sensor noise (Monte Carlo runs); the same seed, the same run.

@@ -7,26 +7,37 @@
 // (chi-square). So s follows the innovations (adaptive estimation, Mehra 1970; a stochastic
 // approximation of E[d^2 / m] = 1):
 //   log s <- log s + rate (min(d^2 / m, cap) - 1),   s >= 1
-// (the cap: one wild match moves it no more than a few ordinary ones). It learns each building's
-// noise as it flies; no figure is tuned to one.
+// (the cap: one wild match moves it no more than a few ordinary ones). The horizontal directions
+// (the level beams against the walls) and the vertical one (the floor beams) are two sensors with
+// their own noise, and each has its own s, learnt from its own part of the innovation. It learns
+// each building's noise as it flies; no figure is tuned to one.
 #pragma once
 
 #include <cmath>
 
+#include "core/Types.hpp"
 #include "core/extensions/PriorAgreement.hpp"
 
 namespace uavslam {
 
 class MatchNoise {
  public:
-  // The scale by which the match's own covariance (H^-1 sigma^2) is multiplied; 1 at first.
-  double scale() const { return std::exp(log_scale_); }
+  // The scales by which the match's own covariance (H^-1 sigma^2) is multiplied; 1 at first.
+  double horizontal_scale() const { return std::exp(log_horizontal_); }
+  double vertical_scale() const { return std::exp(log_vertical_); }
 
-  // An accepted match's distance from the prior, measured with the current scale.
-  void add(const PriorDistance& distance);
+  // The match's covariance as the innovations say it is: Sigma_scan with its horizontal block
+  // times the horizontal scale and its vertical one times the vertical scale.
+  Eigen::Matrix3d scaled(const Eigen::Matrix3d& match_covariance) const;
+
+  // An accepted match: its correction of the prediction, the directions it observed, its own
+  // covariance (unscaled) and the prediction's.
+  void add(const Vec3& correction, const Eigen::Matrix3d& observed,
+           const Eigen::Matrix3d& match_covariance, const Eigen::Matrix3d& predicted_covariance);
 
  private:
-  double log_scale_ = 0.0;
+  double log_horizontal_ = 0.0;
+  double log_vertical_ = 0.0;
 };
 
 }  // namespace uavslam

@@ -1,6 +1,7 @@
 // The match against the motion prior: the Mahalanobis distance over the directions the scan fixed,
 // and the scale MatchNoise learns from it.
 #include <cmath>
+#include <random>
 
 #include <gtest/gtest.h>
 
@@ -36,20 +37,36 @@ TEST(PriorAgreement, NoSpreadMeansAnyCorrectionDisagrees) {
   EXPECT_EQ(distance_from_prior(Vec3::Zero(), I, Eigen::Matrix3d::Zero()).sigmas, 0.0);
 }
 
-// Innovations that are 3 sigmas where 1 was promised: the scale grows until they are not; matches
-// better than promised never shrink it below the information's own covariance.
-TEST(MatchNoise, LearnsHowMuchTooConfidentTheMatchesAre) {
+// Matches promised to 1 cm in every direction, whose corrections of the prediction really spread
+// 3 cm horizontally and 1 cm vertically: the horizontal scale grows to 9 (3^2), the vertical one
+// stays near 1; matches better than promised never shrink either below the information's own.
+TEST(MatchNoise, LearnsHowMuchTooConfidentEachChannelIs) {
+  const Eigen::Matrix3d promised = 1e-4 * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d observed = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d predicted = Eigen::Matrix3d::Zero();
   MatchNoise noise;
-  EXPECT_EQ(noise.scale(), 1.0);
-  for (int i = 0; i < 100; ++i) noise.add({0.1, 2});
-  EXPECT_EQ(noise.scale(), 1.0);
-  // The true innovation is 3 sigmas of the unscaled covariance over 2 directions (d^2 / m = 4.5):
-  // each match's distance is measured with the scale learnt so far, so it settles at 4.5.
-  for (int i = 0; i < 2000; ++i) noise.add({3.0 / std::sqrt(noise.scale()), 2});
-  EXPECT_NEAR(noise.scale(), 4.5, 0.2);
-  noise.add({INFINITY, 2});  // ignored
-  noise.add({100.0, 0});     // nothing observed: ignored
-  EXPECT_NEAR(noise.scale(), 4.5, 0.2);
+  EXPECT_EQ(noise.horizontal_scale(), 1.0);
+  for (int i = 0; i < 100; ++i) noise.add(Vec3(0.001, 0.001, 0.001), observed, promised, predicted);
+  EXPECT_EQ(noise.horizontal_scale(), 1.0);
+  EXPECT_EQ(noise.vertical_scale(), 1.0);
+
+  std::mt19937 random(7);
+  std::normal_distribution<double> horizontal(0.0, 0.03);
+  std::normal_distribution<double> vertical(0.0, 0.01);
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 correction(horizontal(random), horizontal(random), vertical(random));
+    noise.add(correction, observed, promised, predicted);
+  }
+  EXPECT_NEAR(noise.horizontal_scale(), 9.0, 2.0);
+  EXPECT_LT(noise.vertical_scale(), 1.5);
+  const Eigen::Matrix3d scaled = noise.scaled(promised);
+  EXPECT_NEAR(scaled(0, 0), noise.horizontal_scale() * 1e-4, 1e-12);
+  EXPECT_NEAR(scaled(2, 2), noise.vertical_scale() * 1e-4, 1e-12);
+
+  // A match and a prediction that both claim no spread: the distance is infinite, ignored.
+  const double before = noise.horizontal_scale();
+  noise.add(Vec3(0.1, 0.1, 0.0), observed, Eigen::Matrix3d::Zero(), predicted);
+  EXPECT_EQ(noise.horizontal_scale(), before);
 }
 
 }  // namespace

@@ -318,13 +318,16 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
       load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/seed.yaml"));
 }
 
-// The UAV's configuration is the seed's plus the motion model and the degeneracy analysis.
-TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheImuPriorAndDegeneracy) {
+// The UAV's configuration is the seed's plus the motion model, the degeneracy analysis and the
+// seed's own suggestion of a periodic heading check.
+TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheImuPriorDegeneracyAndHeadingCheck) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
   EXPECT_EQ(config.icp.motion_prior, MotionPrior::Imu);
   EXPECT_GT(config.degeneracy.threshold, 0.0);
+  EXPECT_EQ(config.icp.heading, HeadingMode::PeriodicCheck);
   config.icp.motion_prior = SlamConfig{}.icp.motion_prior;
   config.degeneracy.threshold = SlamConfig{}.degeneracy.threshold;
+  config.icp.heading = SlamConfig{}.icp.heading;
   expect_default_slam_config(config);
 }
 
