@@ -75,6 +75,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
                              ? prediction.motion
                              : yaw_rotation(heading_correction_) * prediction.motion;
   const Pose start{scan.stamp, pose_.position + predicted, orientation};
+  const Eigen::Matrix3d prior = predicted_covariance(prediction, start.stamp);
   report.relocalised = stale(scan.stamp);
   const MatchResult match =
       report.relocalised
@@ -88,20 +89,20 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   report.error_before = match.error_before;
   report.error_after = match.error_after;
   report.iterations = match.iterations;
-  if (match.outcome != ScanOutcome::Accepted) return carried_by_prior(report, start, prediction);
+  if (match.outcome != ScanOutcome::Accepted) return carried_by_prior(report, start, prior);
 
   // Beyond the seed: what the scan saw, and whether the match agrees with the motion prior there.
-  const Vec3 position = keep_what_the_scan_saw(report, match, start, prediction);
+  const Vec3 position = keep_what_the_scan_saw(report, match, start, prior);
   const std::optional<PriorDistance> distance =
-      distance_from_prior(report, match, start, prediction);
+      distance_from_prior(report, match, start, prediction, prior);
   if (distance && !report.relocalised) {
     report.prior_distance = distance->sigmas;
     if (config_.icp.prior_gate > 0.0 && distance->sigmas > config_.icp.prior_gate) {
       report.outcome = ScanOutcome::DisagreesWithPrior;
-      return carried_by_prior(report, start, prediction);
+      return carried_by_prior(report, start, prior);
     }
     match_noise_.add(match.position - start.position, report.seen.observed, report.seen.covariance,
-                     predicted_covariance(prediction, start.stamp));
+                     prior);
   }
 
   // The heading the scan agreed with becomes the correction for this and later scans.
@@ -124,9 +125,9 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
 // A rejected scan: with a motion prior, the vehicle went where the prior says (the start), with
 // the prior's covariance; without one (the seed), the pose stays.
 ScanReport SlamPipeline::carried_by_prior(ScanReport& report, const Pose& start,
-                                          const MotionPrediction& prediction) {
+                                          const Eigen::Matrix3d& prior) {
   if (start.position == pose_.position) return finish(report);
-  covariance_ = predicted_covariance(prediction, start.stamp);
+  covariance_ = prior;
   pose_ = start;
   report.pose = pose_;
   report.covariance = covariance_;
@@ -137,15 +138,16 @@ ScanReport SlamPipeline::carried_by_prior(ScanReport& report, const Pose& start,
 
 // The match's correction of the prediction, in the directions the scan fixed, in standard
 // deviations of the two together (extensions/PriorAgreement): the match's covariance as
-// MatchNoise has learnt to scale it, the prior's own. None without the degeneracy analysis (no
-// match covariance) or a prior with a covariance.
-std::optional<PriorDistance> SlamPipeline::distance_from_prior(
-    const ScanReport& report, const MatchResult& match, const Pose& start,
-    const MotionPrediction& prediction) const {
+// MatchNoise has learnt to scale it, the prior's own (`prior`). None without the degeneracy
+// analysis (no match covariance) or a prior with a covariance.
+std::optional<PriorDistance> SlamPipeline::distance_from_prior(const ScanReport& report,
+                                                               const MatchResult& match,
+                                                               const Pose& start,
+                                                               const MotionPrediction& prediction,
+                                                               const Eigen::Matrix3d& prior) const {
   if (!prediction.covariance || config_.degeneracy.threshold <= 0.0) return std::nullopt;
-  return uavslam::distance_from_prior(
-      match.position - start.position, report.seen.observed,
-      match_noise_.scaled(report.seen.covariance) + predicted_covariance(prediction, start.stamp));
+  return uavslam::distance_from_prior(match.position - start.position, report.seen.observed,
+                                      match_noise_.scaled(report.seen.covariance) + prior);
 }
 
 // The seed trusts the source (heading: source); otherwise the heading is estimated in every scan
@@ -196,14 +198,13 @@ ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected) const {
 // With no predicted covariance (no motion model), the vehicle may have gone recovery.max_speed
 // per second along a blind direction since the last pose.
 Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult& match,
-                                          const Pose& start, const MotionPrediction& prediction) {
+                                          const Pose& start, const Eigen::Matrix3d& prior) {
   if (config_.degeneracy.threshold <= 0.0) return match.position;
   const bool with_yaw = config_.icp.heading == HeadingMode::EveryScan || match.yaw != 0.0;
   const bool measures_height = config_.icp.split_axes;
   report.seen = observability(
       scan_information(match.pairs, match.position, with_yaw, config_.degeneracy.min_sigma),
       config_.degeneracy.threshold, measures_height);
-  const Eigen::Matrix3d prior = predicted_covariance(prediction, start.stamp);
   const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - report.seen.observed;
   report.covariance =
       match_noise_.scaled(report.seen.covariance) + blind * prior * blind.transpose();
@@ -211,12 +212,16 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
 }
 
 // How well the map the scan matched is placed (extensions/MapUncertainty), in the directions the
-// scan fixed. In a blind direction the position is the prior's, and so is its covariance: the
-// motion prior's own already covers everything since its start, and a keyframe that passed it
-// into the map would count it again at the next.
+// scan fixed. A blind direction keeps what it had: there the position is the prior's, carried
+// from the last fixes, and the prior's covariance is relative to the map those fixes were made
+// against (the inertial filter takes map-relative fixes), so the map's uncertainty at them still
+// stands under it:
+//   Sigma_map = P Sigma_pairs P^T + (I - P) Sigma_map,last (I - P)^T
 Eigen::Matrix3d SlamPipeline::map_part(const ScanReport& report, const MatchResult& match) const {
   const Eigen::Matrix3d& P = report.seen.observed;
-  return P * map_uncertainty_.of_points(match.pairs.map_index) * P.transpose();
+  const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - P;
+  return P * map_uncertainty_.of_match(match.pairs) * P.transpose() +
+         blind * map_covariance_ * blind.transpose();
 }
 
 // The covariance of the predicted position: the prior's own, turned into the corrected heading;

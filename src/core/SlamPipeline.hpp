@@ -95,13 +95,14 @@ class SlamPipeline {
   ScanPoints scan_points(const ProjectedScan& projected) const;
   Eigen::Matrix3d map_part(const ScanReport& report, const MatchResult& match) const;
   Eigen::Matrix3d predicted_covariance(const MotionPrediction& prediction, double stamp) const;
-  ScanReport carried_by_prior(ScanReport& report, const Pose& start,
-                              const MotionPrediction& prediction);
+  // `prior`: predicted_covariance at the scan, computed once per scan for these.
+  ScanReport carried_by_prior(ScanReport& report, const Pose& start, const Eigen::Matrix3d& prior);
   std::optional<PriorDistance> distance_from_prior(const ScanReport& report,
                                                    const MatchResult& match, const Pose& start,
-                                                   const MotionPrediction& prediction) const;
+                                                   const MotionPrediction& prediction,
+                                                   const Eigen::Matrix3d& prior) const;
   Vec3 keep_what_the_scan_saw(ScanReport& report, const MatchResult& match, const Pose& start,
-                              const MotionPrediction& prediction);
+                              const Eigen::Matrix3d& prior);
 
   SlamConfig config_;
   ImuBuffer imu_;

@@ -32,6 +32,10 @@ struct ScanInformation {
 ScanInformation scan_information(const Correspondences& pairs, const Vec3& body, bool with_yaw,
                                  double min_sigma);
 
+// Pair i's information on the body's translation (x, y, z), in units of the residual variance:
+// w_x n n^T horizontally (n: its wall's normal from the scan; none without one), w_z vertically.
+Eigen::Matrix3d pair_information(const Correspondences& pairs, std::size_t i);
+
 struct Observability {
   // Projection onto the directions the scan fixes: a position measured by the scan keeps
   // P (measured - predicted) of its correction; the rest stays as predicted.

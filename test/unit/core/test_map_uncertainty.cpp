@@ -1,5 +1,5 @@
 // The map's own uncertainty: a match inherits the covariance of the keyframes whose points it
-// paired with.
+// paired with, each in the directions its pairs fixed.
 #include <gtest/gtest.h>
 
 #include "core/extensions/MapUncertainty.hpp"
@@ -11,26 +11,92 @@ Eigen::Matrix3d isotropic(double variance) {
   return variance * Eigen::Matrix3d::Identity();
 }
 
-TEST(MapUncertainty, AMatchInheritsTheMeanOfItsPairsKeyframes) {
+Eigen::Matrix3d diagonal(double x, double y, double z) {
+  return Vec3(x, y, z).asDiagonal();
+}
+
+// Pairs on walls (horizontal normal n, level beams) or the floor (vertical), each with the map
+// point it paired with.
+struct Pairs {
+  Correspondences pairs;
+  Pairs& wall(std::size_t map_index, const Vec3& normal) {
+    add(map_index, normal, Vec3(1.0, 1.0, 0.0));
+    return *this;
+  }
+  Pairs& floor(std::size_t map_index) {
+    add(map_index, Vec3::Zero(), Vec3(0.0, 0.0, 1.0));
+    return *this;
+  }
+  void add(std::size_t map_index, const Vec3& normal, const Vec3& weights) {
+    pairs.scan.push_back(Vec3::Zero());
+    pairs.map.push_back(Vec3::Zero());
+    pairs.map_index.push_back(map_index);
+    pairs.weights.push_back(weights);
+    pairs.scan_normals.push_back(normal);
+  }
+};
+
+MapUncertainty three_keyframes() {
   MapUncertainty map;
   map.add_keyframe(0, isotropic(0.0));    // points 0..99: the take-off, the map's anchor
   map.add_keyframe(100, isotropic(4.0));  // points 100..149
   map.add_keyframe(150, isotropic(1.0));  // points 150..
-  EXPECT_TRUE(map.of_points({}).isZero());
-  EXPECT_TRUE(map.of_points({0, 5, 99}).isZero());
-  EXPECT_TRUE(map.of_points({100, 149}).isApprox(isotropic(4.0)));
-  EXPECT_TRUE(map.of_points({150, 1000}).isApprox(isotropic(1.0)));
-  // Three pairs on the anchor, one on each of the others: (0 + 0 + 0 + 4 + 1) / 5.
-  EXPECT_TRUE(map.of_points({1, 2, 3, 120, 160}).isApprox(isotropic(1.0)));
+  return map;
+}
+
+TEST(MapUncertainty, AMatchOnOneKeyframeInheritsItsCovariance) {
+  const MapUncertainty map = three_keyframes();
+  EXPECT_TRUE(map.of_match(Pairs{}.pairs).isZero());
+  EXPECT_TRUE(
+      map.of_match(Pairs{}.wall(0, Vec3::UnitX()).wall(5, Vec3::UnitY()).floor(99).pairs).isZero());
+  EXPECT_TRUE(
+      map.of_match(Pairs{}.wall(100, Vec3::UnitX()).wall(149, Vec3::UnitY()).floor(120).pairs)
+          .isApprox(isotropic(4.0)));
+  EXPECT_TRUE(
+      map.of_match(Pairs{}.wall(150, Vec3::UnitX()).wall(1000, Vec3::UnitY()).floor(999).pairs)
+          .isApprox(isotropic(1.0)));
+}
+
+// A corridor: the anchor's many wall pairs fix y, one door edge from a drifted keyframe fixes x.
+// The door edge's keyframe alone says how well x is known, however many pairs the anchor holds.
+TEST(MapUncertainty, EachKeyframeCountsInTheDirectionsItsPairsFixed) {
+  const MapUncertainty map = three_keyframes();
+  Pairs corridor;
+  for (std::size_t i = 0; i < 50; ++i) corridor.wall(i, Vec3::UnitY()).floor(i);
+  corridor.wall(120, Vec3::UnitX());
+  const Eigen::Matrix3d covariance = map.of_match(corridor.pairs);
+  EXPECT_NEAR(covariance(0, 0), 4.0, 1e-9);
+  EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
+  EXPECT_NEAR(covariance(2, 2), 0.0, 1e-9);
+}
+
+// Keyframes on one chain share their error: two that fix the same direction equally give the
+// square of the mean of their standard deviations, ((0 + 2) / 2)^2, not the mean of the variances
+// halved again as independent ones would.
+TEST(MapUncertainty, KeyframesThatFixTheSameDirectionAreTakenAsOneError) {
+  const MapUncertainty map = three_keyframes();
+  const Eigen::Matrix3d covariance =
+      map.of_match(Pairs{}.wall(1, Vec3::UnitX()).wall(101, Vec3::UnitX()).pairs);
+  EXPECT_NEAR(covariance(0, 0), 1.0, 1e-9);
+  EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
 }
 
 TEST(MapUncertainty, AKeyframeThatAddedNothingOwnsNoPoint) {
   MapUncertainty map;
   map.add_keyframe(0, isotropic(1.0));
   map.add_keyframe(10, isotropic(9.0));  // every point within the spacing of older ones
-  map.add_keyframe(10, isotropic(2.0));
-  EXPECT_TRUE(map.of_points({10, 11}).isApprox(isotropic(2.0)));
-  EXPECT_TRUE(map.of_points({9}).isApprox(isotropic(1.0)));
+  map.add_keyframe(10, diagonal(2.0, 3.0, 5.0));
+  EXPECT_TRUE(map.of_match(Pairs{}.wall(10, Vec3::UnitX()).wall(11, Vec3::UnitY()).floor(12).pairs)
+                  .isApprox(diagonal(2.0, 3.0, 5.0)));
+  EXPECT_TRUE(map.of_match(Pairs{}.wall(9, Vec3::UnitX()).wall(9, Vec3::UnitY()).floor(9).pairs)
+                  .isApprox(isotropic(1.0)));
+}
+
+TEST(MapUncertainty, PairsBeforeTheFirstKeyframeOrWithoutInformationCountForNothing) {
+  MapUncertainty map;
+  map.add_keyframe(10, isotropic(4.0));
+  EXPECT_TRUE(map.of_match(Pairs{}.wall(3, Vec3::UnitX()).pairs).isZero());
+  EXPECT_TRUE(map.of_match(Pairs{}.wall(12, Vec3::Zero()).pairs).isZero());  // no normal
 }
 
 }  // namespace
