@@ -26,6 +26,8 @@ SensorLog simulate_sensors(const sim::Scenario& scenario) {
   log.duration = simulator.end_time() - simulator.start_time();
   ImuSample imu;
   while (simulator.next_imu(imu)) log.imu.push_back(imu);
+  VelocitySample velocity;
+  while (simulator.next_velocity(velocity)) log.velocity.push_back(velocity);
   Scan scan;
   while (simulator.next_scan(scan)) {
     log.ground_truth.push_back(simulator.ground_truth_at(scan.stamp));
@@ -89,6 +91,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
   VehicleSlam slam(config);
   slam.start_at(log.ground_truth.front().position);
   std::size_t next_imu = 0;
+  std::size_t next_velocity = 0;
   const auto run_start = Clock::now();
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
     if (process::stop_requested()) {
@@ -99,6 +102,10 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
     // Every IMU sample up to the scan's stamp arrives before the scan, as on the vehicle.
     for (; next_imu < log.imu.size() && log.imu[next_imu].stamp <= scan.stamp; ++next_imu) {
       slam.add_imu(log.imu[next_imu]);
+    }
+    for (; next_velocity < log.velocity.size() && log.velocity[next_velocity].stamp <= scan.stamp;
+         ++next_velocity) {
+      slam.add_velocity(log.velocity[next_velocity]);
     }
     const VehicleScan result = slam.process_scan(scan);
     const ScanReport& report = result.report;

@@ -19,6 +19,7 @@ namespace uavslam::cli {
 
 struct SensorLog {
   std::vector<ImuSample> imu;
+  std::vector<VelocitySample> velocity;  // empty unless the scenario has a velocity source
   std::vector<Scan> scans;
   std::vector<Pose> ground_truth;  // the true body pose at each scan's stamp
   double duration = 0.0;           // s of flight

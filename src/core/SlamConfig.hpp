@@ -119,6 +119,9 @@ struct SlamConfig {
     // seed; needs a motion prior with a covariance and degeneracy.threshold > 0, which gives the
     // match its covariance).
     double prior_gate = 0.0;
+    // Matches rejected by the gate in a row, each agreeing with the one before, after which the
+    // next such match is taken: the prior, not the scans, has drifted (0: never; PriorGate).
+    int prior_gate_overrule = 3;
   } icp;
 
   // The nearest-neighbour search: FLANN approximate kd-trees (real time) or exact (reference).
@@ -170,6 +173,10 @@ struct SlamConfig {
     double initial_bias_sigma = 0.05;       // m/s^2: the accelerometer's bias before any match
     double odometry_noise_per_metre = 0.1;  // m of odometry error per m travelled
     double odometry_noise_floor = 0.002;    // m per scan, however short the motion
+    // The IMU prior fuses a velocity source's samples when they come (VelocitySample): where the
+    // scan is blind, the position then drifts with the velocity's noise, not the accelerometer
+    // bias's square of time.
+    bool fuse_velocity = false;
   } motion;
 
   // Orientation source: how far apart the IMU samples around a scan may be.

@@ -29,7 +29,8 @@ SlamPipeline::SlamPipeline(const SlamConfig& config, const Vec3& initial_positio
     : config_(config),
       imu_(config.imu.max_gap),
       map_(make_nearest_neighbour_index(config.nearest_neighbour), config.map.min_point_spacing),
-      matcher_(config.icp) {
+      matcher_(config.icp),
+      gate_(config.icp.prior_gate, config.icp.prior_gate_overrule) {
   pose_.position = initial_position;
 }
 
@@ -97,12 +98,20 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
       distance_from_prior(report, match, start, prediction, prior);
   if (distance && !report.relocalised) {
     report.prior_distance = distance->sigmas;
-    if (config_.icp.prior_gate > 0.0 && distance->sigmas > config_.icp.prior_gate) {
+    const Vec3 correction = match.position - start.position;
+    // The gate measures in the learnt scales: none until they have settled.
+    const PriorGate::Verdict verdict =
+        match_noise_.settled() ? gate_.judge(*distance, correction, report.seen.observed,
+                                             match_noise_.scaled(report.seen.covariance))
+                               : PriorGate::Verdict::Agrees;
+    // Learnt from every match, the gated ones too: a gate that kept its refusals out of the scale
+    // it is measured in would learn too small a scale and refuse ever more.
+    match_noise_.add(correction, report.seen.observed, report.seen.covariance, prior);
+    if (verdict == PriorGate::Verdict::Rejected) {
       report.outcome = ScanOutcome::DisagreesWithPrior;
       return carried_by_prior(report, start, prior);
     }
-    match_noise_.add(match.position - start.position, report.seen.observed, report.seen.covariance,
-                     prior);
+    report.prior_overruled = verdict == PriorGate::Verdict::Overrules;
   }
 
   // The heading the scan agreed with becomes the correction for this and later scans.

@@ -48,6 +48,9 @@ struct ScanReport {
   // The match's distance from the motion prior's prediction, in standard deviations
   // (extensions/PriorAgreement); 0 without a prior that has a covariance.
   double prior_distance = 0.0;
+  // The gate had turned away the matches before this one, each agreeing with the last, and this
+  // one, agreeing with them, was taken against the prior (icp.prior_gate_overrule).
+  bool prior_overruled = false;
 
   // The pose's covariance in the map's frame as a whole (from the take-off point): the match's
   // relative to the map, and the map's own. What goes to those who fly on the pose.
@@ -117,6 +120,7 @@ class SlamPipeline {
   std::vector<Neighbour> nearest_;  // the last match's neighbours, the next one's warm start
   Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();  // of pose_.position
   MatchNoise match_noise_;
+  PriorGate gate_;
   MapUncertainty map_uncertainty_;
   Eigen::Matrix3d map_covariance_ = Eigen::Matrix3d::Zero();  // the last match's
 };

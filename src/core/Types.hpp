@@ -42,6 +42,15 @@ struct OdometrySample {
   Vec3 position = Vec3::Zero();  // m, in the odometry's own frame
 };
 
+// One velocity of a third motion source: the autopilot's own estimate (from optical flow or
+// visual-inertial odometry; MAVLink LOCAL_POSITION_NED, ODOMETRY), in the orientation source's
+// frame, with the covariance the source states.
+struct VelocitySample {
+  double stamp = 0.0;                                    // s
+  Vec3 velocity = Vec3::Zero();                          // m/s
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // (m/s)^2
+};
+
 // The fixed geometry of a range sensor: where each beam points, which ranges are valid and where
 // the sensor sits on the body. A planar scanner, one with beams deflected by a mirror and a
 // multi-ring scanner all reduce to a list of beam directions.

@@ -127,7 +127,7 @@ LidarSpec read_lidar(const YamlReader& reader) {
 
 sim::ImuSpec read_imu(const YamlReader& reader) {
   reader.expect_keys_only({"rate_hz", "orientation_noise_std_deg", "yaw_drift_deg_per_min",
-                           "gyro_noise_std", "accel_noise_std"});
+                           "gyro_noise_std", "accel_noise_std", "accel_bias"});
   sim::ImuSpec imu;
   imu.rate_hz = reader.get_double_or("rate_hz", imu.rate_hz, NumberRange::positive());
   imu.orientation_noise_std_deg = reader.get_double_or(
@@ -138,14 +138,24 @@ sim::ImuSpec read_imu(const YamlReader& reader) {
       reader.get_double_or("gyro_noise_std", imu.gyro_noise_std, NumberRange::non_negative());
   imu.accel_noise_std =
       reader.get_double_or("accel_noise_std", imu.accel_noise_std, NumberRange::non_negative());
+  imu.accel_bias = reader.get_vec3_or("accel_bias", imu.accel_bias);
   return imu;
+}
+
+sim::VelocitySpec read_velocity(const YamlReader& reader) {
+  reader.expect_keys_only({"rate_hz", "noise_std"});
+  sim::VelocitySpec velocity;
+  velocity.rate_hz = reader.get_double_or("rate_hz", velocity.rate_hz, NumberRange::positive());
+  velocity.noise_std =
+      reader.get_double_or("noise_std", velocity.noise_std, NumberRange::positive());
+  return velocity;
 }
 
 }  // namespace
 
 sim::Scenario load_scenario(const std::string& path) {
   const YamlReader root = YamlReader::from_file(path, "scenario");
-  root.expect_keys_only({"name", "seed", "world", "trajectory", "lidar", "imu"});
+  root.expect_keys_only({"name", "seed", "world", "trajectory", "lidar", "imu", "velocity"});
   sim::Scenario scenario;
   scenario.name = root.get_string_or("name", std::filesystem::path(path).stem().string());
   scenario.seed = root.get_uint64_or("seed", scenario.seed);
@@ -153,6 +163,7 @@ sim::Scenario load_scenario(const std::string& path) {
   scenario.waypoints = read_waypoints(root.at("trajectory"), sim::World(scenario.world));
   if (const auto lidar = root.find("lidar")) scenario.lidar = read_lidar(*lidar);
   if (const auto imu = root.find("imu")) scenario.imu = read_imu(*imu);
+  if (const auto velocity = root.find("velocity")) scenario.velocity = read_velocity(*velocity);
   return scenario;
 }
 

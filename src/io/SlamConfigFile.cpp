@@ -97,6 +97,10 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.prior_gate = v.as_double(NumberRange::non_negative());
        }},
+      {"icp", "prior_gate_overrule",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.prior_gate_overrule = v.as_int(NumberRange::non_negative());
+       }},
       {"nearest_neighbour", "index",
        [](SlamConfig& c, const YamlReader& v) {
          c.nearest_neighbour.index = as_mode<IndexKind>(v);
@@ -177,6 +181,8 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.motion.odometry_noise_floor = v.as_double(NumberRange::non_negative());
        }},
+      {"motion", "fuse_velocity",
+       [](SlamConfig& c, const YamlReader& v) { c.motion.fuse_velocity = v.as_bool(); }},
       {"imu", "max_gap",
        [](SlamConfig& c, const YamlReader& v) {
          c.imu.max_gap = v.as_double(NumberRange::positive());

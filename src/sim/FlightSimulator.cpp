@@ -8,7 +8,13 @@ FlightSimulator::FlightSimulator(const Scenario& scenario)
       lidar_(scenario.lidar, *world_, scenario.seed),
       imu_(scenario.imu, scenario.seed),
       scan_clock_(trajectory_.start_time(), trajectory_.end_time(), scenario.lidar.rate_hz),
-      imu_clock_(trajectory_.start_time(), trajectory_.end_time(), scenario.imu.rate_hz) {}
+      imu_clock_(trajectory_.start_time(), trajectory_.end_time(), scenario.imu.rate_hz),
+      velocity_(scenario.velocity, scenario.imu, scenario.seed) {
+  if (scenario.velocity.rate_hz > 0.0) {
+    velocity_clock_.emplace(trajectory_.start_time(), trajectory_.end_time(),
+                            scenario.velocity.rate_hz);
+  }
+}
 
 bool FlightSimulator::next_scan(Scan& out) {
   if (next_scan_index_ >= scan_clock_.count()) return false;
@@ -22,6 +28,13 @@ bool FlightSimulator::next_imu(ImuSample& out) {
   if (next_imu_index_ >= imu_clock_.count()) return false;
   out = imu_.sample_at(trajectory_, imu_clock_.stamp(next_imu_index_));
   ++next_imu_index_;
+  return true;
+}
+
+bool FlightSimulator::next_velocity(VelocitySample& out) {
+  if (!velocity_clock_ || next_velocity_index_ >= velocity_clock_->count()) return false;
+  out = velocity_.sample_at(trajectory_, velocity_clock_->stamp(next_velocity_index_));
+  ++next_velocity_index_;
   return true;
 }
 

@@ -1,10 +1,12 @@
-// A whole simulated flight: the world, the trajectory and the two sensors, read as two
-// independent, deterministic, time-ordered streams (LiDAR scans and IMU samples). Separate
+// A whole simulated flight: the world, the trajectory and the sensors, read as independent,
+// deterministic, time-ordered streams (LiDAR scans, IMU samples and, when the scenario has a
+// velocity source, velocity samples). Separate
 // processes each owning a FlightSimulator of the same scenario see exactly the same data.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "core/Types.hpp"
 #include "sim/ImuSimulator.hpp"
@@ -12,6 +14,7 @@
 #include "sim/SampleClock.hpp"
 #include "sim/Scenario.hpp"
 #include "sim/Trajectory.hpp"
+#include "sim/VelocitySimulator.hpp"
 #include "sim/World.hpp"
 
 namespace uavslam::sim {
@@ -31,6 +34,9 @@ class FlightSimulator {
   bool next_scan(Scan& out);
   // The next IMU sample (stamps start, start + 1/imu rate, ...); false when the flight is over.
   bool next_imu(ImuSample& out);
+  // The next velocity sample (stamps start, start + 1/velocity rate, ...); false when the flight
+  // is over or the scenario has no velocity source.
+  bool next_velocity(VelocitySample& out);
 
   Pose ground_truth_at(double t) const { return trajectory_.pose_at(t); }
   const World& world() const { return *world_; }
@@ -46,8 +52,11 @@ class FlightSimulator {
   ImuSimulator imu_;
   SampleClock scan_clock_;
   SampleClock imu_clock_;
+  VelocitySimulator velocity_;
+  std::optional<SampleClock> velocity_clock_;  // none without a velocity source
   std::uint64_t next_scan_index_ = 0;
   std::uint64_t next_imu_index_ = 0;
+  std::uint64_t next_velocity_index_ = 0;
 };
 
 }  // namespace uavslam::sim

@@ -16,6 +16,12 @@ Eigen::Quaterniond rotation_from_vector(const Vec3& v) {
 
 }  // namespace
 
+Eigen::Quaterniond heading_drift_at(const ImuSpec& spec, const Trajectory& trajectory, double t) {
+  const double minutes = (t - trajectory.start_time()) / 60.0;
+  return Eigen::Quaterniond(
+      Eigen::AngleAxisd(deg_to_rad(spec.yaw_drift_deg_per_min * minutes), Vec3::UnitZ()));
+}
+
 ImuSimulator::ImuSimulator(const ImuSpec& spec, std::uint64_t seed)
     : spec_(spec), random_(mix_seed(seed, kImuStream)) {}
 
@@ -29,10 +35,8 @@ Vec3 ImuSimulator::standard_normal_vector() {
 
 ImuSample ImuSimulator::sample_at(const Trajectory& trajectory, double t) {
   const Pose truth = trajectory.pose_at(t);
-  const double minutes = (truth.stamp - trajectory.start_time()) / 60.0;
   // Heading drift turns the reported attitude about the world vertical.
-  const Eigen::Quaterniond drift(
-      Eigen::AngleAxisd(deg_to_rad(spec_.yaw_drift_deg_per_min * minutes), Vec3::UnitZ()));
+  const Eigen::Quaterniond drift = heading_drift_at(spec_, trajectory, truth.stamp);
   const Vec3 attitude_noise =
       deg_to_rad(spec_.orientation_noise_std_deg) * standard_normal_vector();
   const Vec3 gyro_noise = spec_.gyro_noise_std * standard_normal_vector();
@@ -45,7 +49,8 @@ ImuSample ImuSimulator::sample_at(const Trajectory& trajectory, double t) {
   sample.angular_velocity = trajectory.angular_velocity_at(t) + gyro_noise;
   // An accelerometer measures specific force: what the thrust does beyond cancelling gravity.
   const Vec3 specific_force_world = trajectory.acceleration_at(t) + kGravity * Vec3::UnitZ();
-  sample.linear_acceleration = truth.orientation.conjugate() * specific_force_world + accel_noise;
+  sample.linear_acceleration =
+      truth.orientation.conjugate() * specific_force_world + spec_.accel_bias + accel_noise;
   return sample;
 }
 

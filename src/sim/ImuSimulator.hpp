@@ -11,6 +11,10 @@
 
 namespace uavslam::sim {
 
+// The heading drift of the autopilot's attitude at time t of the flight (imu.yaw_drift): a turn
+// about the world vertical that every quantity it reports in its own frame shares.
+Eigen::Quaterniond heading_drift_at(const ImuSpec& spec, const Trajectory& trajectory, double t);
+
 class ImuSimulator {
  public:
   ImuSimulator(const ImuSpec& spec, std::uint64_t seed);

@@ -41,6 +41,16 @@ struct ImuSpec {
   double yaw_drift_deg_per_min = 0.0;
   double gyro_noise_std = 0.001;  // rad/s
   double accel_noise_std = 0.02;  // m/s^2
+  // m/s^2 per body axis, constant: what the accelerometer adds to the specific force (a real
+  // one's calibration leaves a few hundredths; zero, the ideal sensor, unless a scenario says).
+  Vec3 accel_bias = Vec3::Zero();
+};
+
+// The autopilot's velocity estimate (from optical flow or visual-inertial odometry), reported in
+// the same drifting heading frame as the IMU's attitude.
+struct VelocitySpec {
+  double rate_hz = 0.0;     // samples per second; 0: the vehicle has no such source
+  double noise_std = 0.05;  // m/s per axis, white, as the samples' covariance states it
 };
 
 struct Scenario {
@@ -49,6 +59,7 @@ struct Scenario {
   std::vector<Waypoint> waypoints;
   LidarSpec lidar;
   ImuSpec imu;
+  VelocitySpec velocity;
   std::uint64_t seed = 1;
 };
 

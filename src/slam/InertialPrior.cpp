@@ -1,5 +1,6 @@
 #include "slam/InertialPrior.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -50,6 +51,18 @@ bool InertialPrior::add(const ImuSample& sample) {
   return true;
 }
 
+bool InertialPrior::add_velocity(const VelocitySample& sample) {
+  const bool in_order = velocities_.empty() || sample.stamp > velocities_.back().stamp;
+  const Eigen::LLT<Eigen::Matrix3d> positive(sample.covariance);
+  if (!std::isfinite(sample.stamp) || !sample.velocity.allFinite() ||
+      !sample.covariance.allFinite() || !in_order || positive.info() != Eigen::Success) {
+    ++rejected_velocities_;
+    return false;
+  }
+  velocities_.push_back(sample);
+  return true;
+}
+
 // One sample held for dt: the mean and covariance through the equations above.
 void InertialPrior::integrate(State& s, const ImuSample& sample, double dt,
                               double heading_correction) const {
@@ -70,7 +83,8 @@ void InertialPrior::integrate(State& s, const ImuSample& sample, double dt,
 }
 
 // The state at the last posed scan carried to t through the samples since, each held until the
-// next; none across a gap of more than max_gap without a sample.
+// next, and updated by the velocities stamped on the way; none across a gap of more than max_gap
+// without a sample.
 std::optional<InertialPrior::State> InertialPrior::propagated(double t,
                                                               double heading_correction) const {
   if (!state_ || samples_.empty()) return std::nullopt;
@@ -78,11 +92,18 @@ std::optional<InertialPrior::State> InertialPrior::propagated(double t,
   auto next = std::upper_bound(samples_.begin(), samples_.end(), s.stamp,
                                [](double stamp, const ImuSample& x) { return stamp < x.stamp; });
   const ImuSample* held = next == samples_.begin() ? &*next : &*std::prev(next);
+  auto velocity =
+      std::upper_bound(velocities_.begin(), velocities_.end(), s.stamp,
+                       [](double stamp, const VelocitySample& x) { return stamp < x.stamp; });
   while (s.stamp < t) {
-    const double until = next != samples_.end() && next->stamp < t ? next->stamp : t;
+    double until = next != samples_.end() && next->stamp < t ? next->stamp : t;
+    if (velocity != velocities_.end() && velocity->stamp < until) until = velocity->stamp;
     if (until - held->stamp > max_gap_ || held->stamp - s.stamp > max_gap_) return std::nullopt;
     integrate(s, *held, until - s.stamp, heading_correction);
     s.stamp = until;
+    if (velocity != velocities_.end() && velocity->stamp <= s.stamp) {
+      update_velocity(s, *velocity++, heading_correction);
+    }
     if (next != samples_.end() && next->stamp <= s.stamp) held = &*next++;
   }
   return s;
@@ -143,6 +164,21 @@ void InertialPrior::update(State& s, const ScanReport& report) const {
   s.P = IKH * s.P * IKH.transpose() + K * Rz * K.transpose();
 }
 
+// The velocity source's sample, turned into the map frame by the heading correction.
+void InertialPrior::update_velocity(State& s, const VelocitySample& sample,
+                                    double heading_correction) const {
+  const Eigen::Matrix3d R = yaw_rotation(heading_correction).toRotationMatrix();
+  Eigen::Matrix<double, 3, 9> H = Eigen::Matrix<double, 3, 9>::Zero();
+  H.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d Rz = R * sample.covariance * R.transpose();
+  const Vec3 innovation = R * sample.velocity - s.x.segment<3>(3);
+  const Eigen::Matrix3d S = H * s.P * H.transpose() + Rz;
+  const Eigen::Matrix<double, 9, 3> K = s.P * H.transpose() * S.inverse();
+  s.x += K * innovation;
+  const StateMatrix IKH = StateMatrix::Identity() - K * H;
+  s.P = IKH * s.P * IKH.transpose() + K * Rz * K.transpose();
+}
+
 void InertialPrior::scan_posed(const ScanReport& report, double heading_correction) {
   const double t = report.pose.stamp;
   std::optional<State> s = state_ ? propagated(t, heading_correction) : std::nullopt;
@@ -152,8 +188,10 @@ void InertialPrior::scan_posed(const ScanReport& report, double heading_correcti
     if (report.accepted()) update(*s, report);
     state_ = s;
   }
-  // The sample held at t stays: the next interval starts with it.
+  // The sample held at t stays: the next interval starts with it. The velocities up to t are in
+  // the state now.
   while (samples_.size() > 1 && samples_[1].stamp <= t) samples_.pop_front();
+  while (!velocities_.empty() && velocities_.front().stamp <= t) velocities_.pop_front();
 }
 
 Vec3 InertialPrior::velocity() const {

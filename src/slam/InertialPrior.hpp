@@ -12,6 +12,10 @@
 // columns of E span the directions the scan fixed (ScanReport::seen): a blind direction neither
 // corrects the state nor is corrected by it. So the bias and velocity are estimated from the
 // matched poses wherever the walls allow, and carry the vehicle through where they do not.
+// A third source, the autopilot's velocity (motion.fuse_velocity), updates the velocity at each
+// of its samples: z = R_h v_source, H = [0 I 0], R_z = R_h Sigma_v R_h^T (R_h: the heading
+// correction). Where the scan is blind the position then drifts with the velocity's noise,
+// integrated, instead of with an accelerometer bias nothing observes (1/2 b t^2).
 #pragma once
 
 #include <cstddef>
@@ -32,6 +36,9 @@ class InertialPrior {
   // False (counted in rejected()) for a non-finite or out-of-order sample, or one without a
   // specific force (a source that gives only the attitude, e.g. a 2D log's odometry heading).
   bool add(const ImuSample& sample);
+  // False (counted in rejected_velocities()) for a non-finite or out-of-order sample, or one
+  // whose covariance is not positive definite (a source that states no accuracy).
+  bool add_velocity(const VelocitySample& sample);
 
   // The motion from the last posed scan to the scan stamped t, in the orientation source's frame
   // (heading_correction: what the matcher has added to the source's heading), with the predicted
@@ -43,6 +50,7 @@ class InertialPrior {
   std::size_t scans_with_prior() const { return with_prior_; }
   std::size_t scans_without_prior() const { return without_prior_; }
   std::size_t rejected() const { return rejected_; }
+  std::size_t rejected_velocities() const { return rejected_velocities_; }
   Vec3 velocity() const;  // m/s in the map frame (zero before the first posed scan)
   Vec3 bias() const;      // m/s^2 in the body frame
 
@@ -58,15 +66,18 @@ class InertialPrior {
   std::optional<State> propagated(double t, double heading_correction) const;
   void integrate(State& state, const ImuSample& sample, double dt, double heading_correction) const;
   void update(State& state, const ScanReport& report) const;
+  void update_velocity(State& state, const VelocitySample& sample, double heading_correction) const;
   void start(const ScanReport& report);
 
   SlamConfig::Motion noise_;
   double max_gap_;
   std::deque<ImuSample> samples_;
-  std::optional<State> state_;  // at the last posed scan
+  std::deque<VelocitySample> velocities_;  // after the last posed scan
+  std::optional<State> state_;             // at the last posed scan
   std::size_t with_prior_ = 0;
   std::size_t without_prior_ = 0;
   std::size_t rejected_ = 0;
+  std::size_t rejected_velocities_ = 0;
 };
 
 }  // namespace uavslam

@@ -34,6 +34,8 @@ std::string to_string(TrackingReason reason) {
       return "no_imu";
     case TrackingReason::RepeatedRejections:
       return "repeated_rejections";
+    case TrackingReason::PriorOverruled:
+      return "prior_overruled";
   }
   return "unknown";
 }
@@ -47,10 +49,12 @@ TrackingStatus TrackingMonitor::judge(const Scan& scan, const ScanReport& report
   return status;
 }
 
-// The most serious first: a pose found again after a gap, a blind direction, then lateness.
+// The most serious first: a pose found again after a gap or against the prior, a blind direction,
+// then lateness.
 TrackingStatus TrackingMonitor::matched(const ScanReport& report,
                                         std::size_t skipped_before) const {
   if (report.relocalised) return {Tracking::Degraded, TrackingReason::Gap};
+  if (report.prior_overruled) return {Tracking::Degraded, TrackingReason::PriorOverruled};
   if (report.seen.degenerate > 0) return {Tracking::Degraded, TrackingReason::Degenerate};
   if (skipped_before > 0) return {Tracking::Degraded, TrackingReason::Overload};
   return {Tracking::Tracking, TrackingReason::None};

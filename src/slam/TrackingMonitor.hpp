@@ -3,8 +3,9 @@
 //   tracking  the scan matched and fixed every direction;
 //   degraded  a pose was given, but part of it is the motion prior's: a direction the scan cannot
 //             see (degenerate), a rejected scan carried by the prior (rejected, too_few_points,
-//             no_imu), the match found again after a gap (gap), or scans dropped unprocessed
-//             because the matcher fell behind (overload);
+//             no_imu), the match found again after a gap (gap), a match taken against a
+//             prior that the gate had found drifted (prior_overruled: the pose jumped), or scans
+//             dropped unprocessed because the matcher fell behind (overload);
 //   lost      no scan has matched for longer than recovery.gap (the time after which the last
 //             position is stale): the reason is why the latest failed (gap: no scans came;
 //             too_few_points, no_imu; repeated_rejections for any other).
@@ -31,6 +32,7 @@ enum class TrackingReason {
   TooFewPoints,
   NoImu,
   RepeatedRejections,
+  PriorOverruled,
 };
 
 struct TrackingStatus {

@@ -36,6 +36,10 @@ void VehicleSlam::add_odometry(const OdometrySample& sample) {
   if (odometry_) odometry_->add(sample);
 }
 
+void VehicleSlam::add_velocity(const VelocitySample& sample) {
+  if (inertial_ && config().motion.fuse_velocity) inertial_->add_velocity(sample);
+}
+
 MotionPrediction VehicleSlam::predicted_motion(double stamp) {
   if (odometry_) return odometry_->motion_to(stamp);
   if (inertial_) return inertial_->motion_to(stamp, pipeline_.heading_correction());

@@ -64,6 +64,10 @@ class VehicleSlam {
   // Wheel odometry for the motion prior; ignored unless icp.motion_prior is odometry. A
   // non-finite or out-of-order sample is dropped and counted (odometry_prior()->rejected()).
   void add_odometry(const OdometrySample& sample);
+  // The autopilot's velocity for the IMU prior; ignored unless icp.motion_prior is imu and
+  // motion.fuse_velocity is set. A bad sample is dropped and counted
+  // (inertial_prior()->rejected_velocities()).
+  void add_velocity(const VelocitySample& sample);
 
   // skipped_before: scans the caller dropped unprocessed just before this one (it fell behind);
   // they make the tracking state degraded (overload).

@@ -153,6 +153,17 @@ TEST_F(UavslamCli, ADoorEdgesFixLeavesTheCorridorsAxisAsUncertainAsItsMap) {
   EXPECT_LE(uav.at("consistency").at("nees_mean").get<double>(), 6.0);
 }
 
+// The plain corridor with a real accelerometer (a bias of 2-3 mg left by its calibration) and the
+// autopilot's velocity from optical flow (flow_corridor.yaml): the IMU alone integrates the bias
+// along the blind axis into metres; the shipped config fuses the velocity and holds the corridor.
+TEST_F(UavslamCli, TheAutopilotsVelocityCarriesTheCorridorThatABiasedImuLoses) {
+  const double fused = ate_horizontal(simulate(dir / "uav", "flow_corridor", "config/slam.yaml"));
+  const double imu_alone = ate_horizontal(simulate(dir / "imu", "flow_corridor", "config/slam.yaml",
+                                                   "--set motion.fuse_velocity=false"));
+  EXPECT_LE(fused, 0.15);
+  EXPECT_GT(imu_alone, 1.0);
+}
+
 // An IMU whose yaw drifts 2 degrees a minute (yaw_drift.yaml): the shipped UAV config checks the
 // heading against the map (icp.heading periodic_check) and keeps the map straight; the seed's
 // heading, the IMU's as it is, bends it.

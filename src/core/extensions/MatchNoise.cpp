@@ -32,6 +32,11 @@ void MatchNoise::add(const Vec3& correction, const Eigen::Matrix3d& observed,
   const Eigen::Matrix3d S = scaled(match_covariance) + predicted_covariance;
   learn(log_horizontal_, distance_from_prior(correction, kHorizontal * observed * kHorizontal, S));
   learn(log_vertical_, distance_from_prior(correction, kVertical * observed * kVertical, S));
+  ++added_;
+}
+
+bool MatchNoise::settled() const {
+  return double(added_) * kRate >= 1.0;
 }
 
 }  // namespace uavslam

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 
 #include "core/Types.hpp"
 #include "core/extensions/PriorAgreement.hpp"
@@ -35,7 +36,12 @@ class MatchNoise {
   void add(const Vec3& correction, const Eigen::Matrix3d& observed,
            const Eigen::Matrix3d& match_covariance, const Eigen::Matrix3d& predicted_covariance);
 
+  // Enough matches learnt from for the scales to have settled (about 1 / rate of them): before,
+  // a distance measured with them says little.
+  bool settled() const;
+
  private:
+  std::size_t added_ = 0;
   double log_horizontal_ = 0.0;
   double log_vertical_ = 0.0;
 };

@@ -37,6 +37,56 @@ TEST(PriorAgreement, NoSpreadMeansAnyCorrectionDisagrees) {
   EXPECT_EQ(distance_from_prior(Vec3::Zero(), I, Eigen::Matrix3d::Zero()).sigmas, 0.0);
 }
 
+// The gate at 5 sigmas (match and prior each sure to 1 cm): a correction of 3 cm agrees, one of
+// 20 cm does not. Three such in a row, each agreeing with the last, and the fourth is taken: the
+// prior has drifted, not the scans.
+TEST(PriorGate, AfterARunOfRefusalsThatAgreeWithEachOtherTheNextMatchOverrulesThePrior) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d sure = 1e-4 * I;
+  const auto judge = [&](PriorGate& gate, const Vec3& correction) {
+    return gate.judge(distance_from_prior(correction, I, 2.0 * sure), correction, I, sure);
+  };
+  using V = PriorGate::Verdict;
+  PriorGate gate(5.0, 3);
+  EXPECT_EQ(judge(gate, Vec3(0.03, 0, 0)), V::Agrees);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(judge(gate, Vec3(0.2 + 0.005 * i, 0, 0)), V::Rejected) << i;
+  EXPECT_EQ(judge(gate, Vec3(0.215, 0, 0)), V::Overrules);
+  // The run starts again after it: the next refusal is the first of a new one.
+  EXPECT_EQ(judge(gate, Vec3(0.2, 0, 0)), V::Rejected);
+  // A match that agrees ends a run.
+  EXPECT_EQ(judge(gate, Vec3(0.2, 0, 0)), V::Rejected);
+  EXPECT_EQ(judge(gate, Vec3(0.0, 0, 0)), V::Agrees);
+  EXPECT_EQ(judge(gate, Vec3(0.2, 0, 0)), V::Rejected);
+  EXPECT_EQ(judge(gate, Vec3(0.2, 0, 0)), V::Rejected);
+  EXPECT_EQ(judge(gate, Vec3(0.2, 0, 0)), V::Rejected);
+  EXPECT_EQ(judge(gate, Vec3(0.2, 0, 0)), V::Overrules);
+}
+
+// Wrong matches that scatter (each far from the prior and from the one before) never make a run.
+TEST(PriorGate, ScatteredRefusalsNeverOverrule) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d sure = 1e-4 * I;
+  PriorGate gate(5.0, 3);
+  for (int i = 0; i < 20; ++i) {
+    const Vec3 correction = i % 2 == 0 ? Vec3(0.2, 0, 0) : Vec3(0, -0.2, 0);
+    EXPECT_EQ(gate.judge(distance_from_prior(correction, I, 2.0 * sure), correction, I, sure),
+              PriorGate::Verdict::Rejected)
+        << i;
+  }
+}
+
+TEST(PriorGate, NoGateAgreesAlwaysAndNoOverruleRefusesForever) {
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  const Vec3 far(1.0, 0, 0);
+  const PriorDistance distance = distance_from_prior(far, I, 1e-4 * I);
+  PriorGate none(0.0, 3);
+  EXPECT_EQ(none.judge(distance, far, I, 1e-4 * I), PriorGate::Verdict::Agrees);
+  PriorGate forever(5.0, 0);
+  for (int i = 0; i < 50; ++i) {
+    EXPECT_EQ(forever.judge(distance, far, I, 1e-4 * I), PriorGate::Verdict::Rejected) << i;
+  }
+}
+
 // Matches promised to 1 cm in every direction, whose corrections of the prediction really spread
 // 3 cm horizontally and 1 cm vertically: the horizontal scale grows to 9 (3^2), the vertical one
 // stays near 1; matches better than promised never shrink either below the information's own.

@@ -112,6 +112,8 @@ imu:
   yaw_drift_deg_per_min: -1.5
   gyro_noise_std: 0.002
   accel_noise_std: 0.05
+  accel_bias: [0.01, -0.02, 0.03]
+velocity: {rate_hz: 25, noise_std: 0.08}
 )"));
   const sim::Scenario s = load_scenario(path);
   EXPECT_EQ(s.name, "full");
@@ -140,6 +142,11 @@ imu:
   EXPECT_EQ(s.imu.yaw_drift_deg_per_min, -1.5);
   EXPECT_EQ(s.imu.gyro_noise_std, 0.002);
   EXPECT_EQ(s.imu.accel_noise_std, 0.05);
+  EXPECT_EQ(s.imu.accel_bias, Vec3(0.01, -0.02, 0.03));
+  EXPECT_EQ(s.velocity.rate_hz, 25.0);
+  EXPECT_EQ(s.velocity.noise_std, 0.08);
+  // Without the section the vehicle has no velocity source.
+  EXPECT_EQ(load_scenario(write("plain.yaml", kMinimalScenario)).velocity.rate_hz, 0.0);
 }
 
 TEST_F(YamlFileTest, MissingRequiredKeyIsNamed) {
@@ -303,6 +310,7 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.imu.attitude_sigma, defaults.imu.attitude_sigma);
   EXPECT_EQ(config.imu.heading_sigma, defaults.imu.heading_sigma);
   EXPECT_EQ(config.icp.prior_gate, defaults.icp.prior_gate);
+  EXPECT_EQ(config.icp.prior_gate_overrule, defaults.icp.prior_gate_overrule);
   EXPECT_EQ(config.degeneracy.threshold, defaults.degeneracy.threshold);
   EXPECT_EQ(config.degeneracy.min_sigma, defaults.degeneracy.min_sigma);
   EXPECT_EQ(config.motion.accel_noise_density, defaults.motion.accel_noise_density);
@@ -311,6 +319,7 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.motion.initial_bias_sigma, defaults.motion.initial_bias_sigma);
   EXPECT_EQ(config.motion.odometry_noise_per_metre, defaults.motion.odometry_noise_per_metre);
   EXPECT_EQ(config.motion.odometry_noise_floor, defaults.motion.odometry_noise_floor);
+  EXPECT_EQ(config.motion.fuse_velocity, defaults.motion.fuse_velocity);
 }
 
 TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
@@ -318,16 +327,20 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
       load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/seed.yaml"));
 }
 
-// The UAV's configuration is the seed's plus the motion model, the degeneracy analysis and the
-// seed's own suggestion of a periodic heading check.
-TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheImuPriorDegeneracyAndHeadingCheck) {
+// The UAV's configuration is the seed's plus the motion model, the degeneracy analysis, the
+// seed's own suggestion of a periodic heading check and the gate on the motion prior.
+TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingCheckAndGate) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
   EXPECT_EQ(config.icp.motion_prior, MotionPrior::Imu);
   EXPECT_GT(config.degeneracy.threshold, 0.0);
   EXPECT_EQ(config.icp.heading, HeadingMode::PeriodicCheck);
+  EXPECT_GT(config.icp.prior_gate, 0.0);
+  EXPECT_TRUE(config.motion.fuse_velocity);
   config.icp.motion_prior = SlamConfig{}.icp.motion_prior;
+  config.motion.fuse_velocity = SlamConfig{}.motion.fuse_velocity;
   config.degeneracy.threshold = SlamConfig{}.degeneracy.threshold;
   config.icp.heading = SlamConfig{}.icp.heading;
+  config.icp.prior_gate = SlamConfig{}.icp.prior_gate;
   expect_default_slam_config(config);
 }
 
@@ -355,6 +368,7 @@ icp:
   refine_iterations: 3
   stop_step: 0.001
   prior_gate: 4
+  prior_gate_overrule: 7
 nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
 map: {keyframe_height: 0.1, keyframe_lateral: 0.25, keyframe_rotation: 0.3, min_point_spacing: 0.03}
 imu: {max_gap: 0.02, attitude_sigma: 0.01, heading_sigma: 0.05}
@@ -366,6 +380,7 @@ motion:
   initial_bias_sigma: 0.2
   odometry_noise_per_metre: 0.05
   odometry_noise_floor: 0.003
+  fuse_velocity: true
 )");
   const SlamConfig c = load_slam_config(path);
   EXPECT_EQ(c.degeneracy.threshold, 0.04);
@@ -376,6 +391,7 @@ motion:
   EXPECT_EQ(c.motion.initial_bias_sigma, 0.2);
   EXPECT_EQ(c.motion.odometry_noise_per_metre, 0.05);
   EXPECT_EQ(c.motion.odometry_noise_floor, 0.003);
+  EXPECT_TRUE(c.motion.fuse_velocity);
   EXPECT_EQ(c.scan.subsample_every, 1);
   EXPECT_EQ(c.icp.iterations, 20);
   EXPECT_EQ(c.icp.max_translation, 0.5);
@@ -393,6 +409,7 @@ motion:
   EXPECT_EQ(c.icp.refine_iterations, 3);
   EXPECT_EQ(c.icp.stop_step, 0.001);
   EXPECT_EQ(c.icp.prior_gate, 4.0);
+  EXPECT_EQ(c.icp.prior_gate_overrule, 7);
   EXPECT_EQ(c.map.keyframe_rotation, 0.3);
   EXPECT_EQ(c.map.min_point_spacing, 0.03);
   EXPECT_EQ(c.nearest_neighbour.index, IndexKind::Exact);

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -71,6 +72,32 @@ TEST_F(FlightSimulatorTest, ImuStreamCoversTheFlightAtTheImuRate) {
   for (std::size_t k = 0; k < samples.size(); ++k) {
     EXPECT_EQ(samples[k].stamp, simulator.start_time() + double(k) / scenario_.imu.rate_hz);
   }
+}
+
+// The autopilot's velocity: at its rate over the flight, the true velocity turned by the IMU's
+// heading drift, within its stated noise; none without the scenario's velocity section.
+TEST_F(FlightSimulatorTest, VelocityStreamIsTheTrueVelocityInTheImusHeadingFrame) {
+  VelocitySample sample;
+  EXPECT_FALSE(FlightSimulator(scenario_).next_velocity(sample)) << "short.yaml has none";
+  scenario_.velocity.rate_hz = 10.0;
+  scenario_.velocity.noise_std = 0.01;
+  scenario_.imu.yaw_drift_deg_per_min = 30.0;  // 5 degrees after 10 s: a frame to be seen
+  FlightSimulator simulator(scenario_);
+  std::vector<VelocitySample> samples;
+  while (simulator.next_velocity(sample)) samples.push_back(sample);
+  const double duration = simulator.end_time() - simulator.start_time();
+  ASSERT_EQ(samples.size(), static_cast<std::size_t>(duration * 10.0) + 1);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const double t = simulator.start_time() + double(k) / 10.0;
+    EXPECT_EQ(samples[k].stamp, t);
+    EXPECT_TRUE(samples[k].covariance.isApprox(1e-4 * Eigen::Matrix3d::Identity()));
+    const Vec3 in_heading_frame = heading_drift_at(scenario_.imu, simulator.trajectory(), t) *
+                                  simulator.trajectory().velocity_at(t);
+    worst = std::max(worst, (samples[k].velocity - in_heading_frame).norm());
+  }
+  EXPECT_LT(worst, 0.06) << "about five sigmas of 0.01 m/s in three axes";
+  EXPECT_GT(worst, 0.0);
 }
 
 TEST_F(FlightSimulatorTest, SameScenarioGivesBitIdenticalStreams) {

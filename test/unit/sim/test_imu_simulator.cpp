@@ -51,6 +51,15 @@ TEST(ImuSimulator, AccelerometerReadsSpecificForceAlongTheThrust) {
   EXPECT_LT((sample.linear_acceleration - Vec3(0.0, 0.0, thrust)).norm(), 1e-9);
 }
 
+TEST(ImuSimulator, AnAccelerometerBiasAddsToTheSpecificForce) {
+  const Trajectory hover(testing::hover(Vec3(1.0, 2.0, 1.5), 30.0, 10.0));
+  ImuSpec spec = noiseless_imu();
+  spec.accel_bias = Vec3(0.02, -0.01, 0.03);
+  ImuSimulator imu(spec, 1);
+  const ImuSample sample = imu.sample_at(hover, 4.0);
+  EXPECT_LT((sample.linear_acceleration - Vec3(0.02, -0.01, kGravity + 0.03)).norm(), 1e-9);
+}
+
 TEST(ImuSimulator, YawDriftOfTwoDegreesPerMinuteGivesTwoDegreesAfterAMinute) {
   const Trajectory hover(testing::hover(Vec3(1.0, 2.0, 1.5), 0.0, 120.0));
   ImuSpec spec = noiseless_imu();

@@ -51,6 +51,10 @@ TEST_F(Monitor, ABlindDirectionAGapOrLatenessDegradeAMatch) {
   ScanReport found_again = with(ScanOutcome::Accepted);
   found_again.relocalised = true;
   expect(judge(2.0, found_again), Tracking::Degraded, TrackingReason::Gap);
+  ScanReport against_the_prior = with(ScanOutcome::Accepted);
+  against_the_prior.prior_overruled = true;
+  against_the_prior.seen.degenerate = 1;
+  expect(judge(2.025, against_the_prior), Tracking::Degraded, TrackingReason::PriorOverruled);
 }
 
 // Rejections degrade the state until no scan has matched for recovery.gap; then it is lost.
