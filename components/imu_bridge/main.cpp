@@ -1,6 +1,7 @@
 // imu_bridge: publishes the `imu` topic. Source `sim`: the flight simulator's IMU along the same
-// scenario (same seed) as the lidar_driver's, so the two agree on the flight; real time or
-// `--rate` times faster. Source `carmen:FILE`: the robots of CARMEN logs had no IMU, their wheel
+// scenario (same seed) as the lidar_driver's, so the two agree on the flight, and the autopilot's
+// `velocity` when the scenario's vehicle has a velocity source; real time or `--rate` times
+// faster. Source `carmen:FILE`: the robots of CARMEN logs had no IMU, their wheel
 // odometry is their only rotation sensor (and it drifts): one orientation sample per laser scan,
 // at the scan's timeline stamp, the yaw of the laser pose's odometry heading, published a little
 // ahead of the lidar_driver's scan on the shared --start-at timeline (CarmenReplay.hpp); and the
@@ -19,6 +20,7 @@
 
 #include <msg/ImuPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
 #include "common/CarmenReplay.hpp"
@@ -45,6 +47,40 @@
 namespace uavslam {
 namespace {
 
+// One sample of the simulated autopilot, in stamp order: an IMU sample or, when the scenario has
+// a velocity source, a velocity (at equal stamps the IMU's first).
+struct AutopilotSample {
+  double stamp = 0.0;
+  std::variant<ImuSample, VelocitySample> data;
+};
+
+class AutopilotStream {
+ public:
+  explicit AutopilotStream(sim::FlightSimulator& simulator) : simulator_(simulator) {
+    has_imu_ = simulator_.next_imu(imu_);
+    has_velocity_ = simulator_.next_velocity(velocity_);
+  }
+
+  bool next(AutopilotSample& out) {
+    if (has_imu_ && (!has_velocity_ || imu_.stamp <= velocity_.stamp)) {
+      out = {imu_.stamp, imu_};
+      has_imu_ = simulator_.next_imu(imu_);
+      return true;
+    }
+    if (!has_velocity_) return false;
+    out = {velocity_.stamp, velocity_};
+    has_velocity_ = simulator_.next_velocity(velocity_);
+    return true;
+  }
+
+ private:
+  sim::FlightSimulator& simulator_;
+  ImuSample imu_;
+  VelocitySample velocity_;
+  bool has_imu_ = false;
+  bool has_velocity_ = false;
+};
+
 int publish_imu(const process::NodeOptions& node, const process::SimSourceOptions& o) {
   const sim::Scenario scenario = io::load_scenario(o.scenario);
   sim::FlightSimulator simulator(scenario);
@@ -52,22 +88,45 @@ int publish_imu(const process::NodeOptions& node, const process::SimSourceOption
   dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
                                "imu_bridge");
   const std::string topic = dds::topic_name(node.vehicle, dds::kImuTopic);
+  // The autopilot's velocity when the scenario's vehicle has one. --wait-for-subscribers counts imu
+  // readers only: a matcher reads velocity only when its config fuses it, and creates that reader
+  // before its imu reader (a participant announces them in that order).
+  std::optional<dds::Writer<msg::TwistWithCovarianceStampedPubSubType>> velocity;
+  if (scenario.velocity.rate_hz > 0.0) {
+    velocity.emplace(participant, dds::topic_name(node.vehicle, dds::kVelocityTopic),
+                     node.profile(dds::kVelocityTopic, "sensor_writer"));
+  }
   dds::Writer<msg::ImuPubSubType> writer(participant, topic,
                                          node.profile(dds::kImuTopic, "sensor_writer"));
   std::cerr << "imu_bridge: publishing " << topic << " from " << scenario.name << " at "
-            << scenario.imu.rate_hz * o.rate << " Hz (domain " << node.domain << ")\n";
+            << scenario.imu.rate_hz * o.rate << " Hz";
+  if (velocity) {
+    std::cerr << " and " << velocity->topic() << " at " << scenario.velocity.rate_hz * o.rate
+              << " Hz";
+  }
+  std::cerr << " (domain " << node.domain << ")\n";
 
   if (!process::wait_for_subscribers(writer, o.wait_for_subscribers, "imu_bridge")) return 1;
   std::uint64_t seq = 0;
+  std::uint64_t velocity_seq = 0;
+  const dds::Source velocity_source{"imu", node.vehicle};
   process::QosWatch qos("imu_bridge");
-  const process::StreamCounts counts = process::publish_paced<ImuSample>(
-      o, simulator.start_time(), [&](ImuSample& sample) { return simulator.next_imu(sample); },
-      [&](const ImuSample& sample) {
+  AutopilotStream stream(simulator);
+  const process::StreamCounts counts = process::publish_paced<AutopilotSample>(
+      o, simulator.start_time(), [&](AutopilotSample& sample) { return stream.next(sample); },
+      [&](const AutopilotSample& sample) {
         qos.output(writer);
-        return writer.write(dds::simulated_imu_message(sample, seq++, node.vehicle));
+        if (const auto* imu = std::get_if<ImuSample>(&sample.data)) {
+          return writer.write(dds::simulated_imu_message(*imu, seq++, node.vehicle));
+        }
+        qos.output(*velocity);
+        return velocity->write(
+            dds::to_msg(std::get<VelocitySample>(sample.data), velocity_seq++, velocity_source));
       });
-  std::cerr << "imu_bridge: published " << counts.published << " samples, " << counts.missed
-            << " overdue and skipped" << (process::stop_requested() ? " (stopped)" : "") << "\n";
+  std::cerr << "imu_bridge: published " << counts.published << " samples";
+  if (velocity) std::cerr << " (" << velocity_seq << " of them velocities)";
+  std::cerr << ", " << counts.missed << " overdue and skipped"
+            << (process::stop_requested() ? " (stopped)" : "") << "\n";
   process::give_readers_the_last_samples();
   return qos.exit_code();
 }

@@ -16,6 +16,7 @@
 
 #include <msg/ImuPubSubTypes.h>
 #include <msg/LaserScanPubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
 #include "common/HandoffQueue.hpp"
@@ -34,7 +35,8 @@
 namespace uavslam {
 namespace {
 
-const std::vector<std::string> kRecordableTopics{dds::kScanTopic, dds::kImuTopic};
+const std::vector<std::string> kRecordableTopics{dds::kScanTopic, dds::kImuTopic,
+                                                 dds::kVelocityTopic};
 
 struct RecorderOptions {
   std::string out = "out/recording.mcap";
@@ -111,6 +113,10 @@ class RecorderNode {
       if (base == dds::kImuTopic) {
         imu_ = subscribe<msg::ImuPubSubType>(topic, node.profile(base, "sensor_recorder_reader"));
       }
+      if (base == dds::kVelocityTopic) {
+        velocity_ = subscribe<msg::TwistWithCovarianceStampedPubSubType>(
+            topic, node.profile(base, "sensor_recorder_reader"));
+      }
     }
   }
   ~RecorderNode() { finish(); }
@@ -119,10 +125,11 @@ class RecorderNode {
     std::cerr << "recorder: recording " << topic_list() << " to " << recording_.current_file()
               << " (domain " << participant_.domain_id() << ")\n";
     writer_ = std::thread([this] { write_loop(); });  // from now on it alone uses recording_
-    std::size_t scan_writers = 0, imu_writers = 0;
+    std::size_t scan_writers = 0, imu_writers = 0, velocity_writers = 0;
     while (!process::stop_requested() && !writer_failed_) {
       if (scans_) watch(*scans_, scan_writers);
       if (imu_) watch(*imu_, imu_writers);
+      if (velocity_) watch(*velocity_, velocity_writers);
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     finish();
@@ -193,6 +200,7 @@ class RecorderNode {
   void finish() {
     scans_.reset();
     imu_.reset();
+    velocity_.reset();
     queue_.close();
     if (writer_.joinable()) writer_.join();
     recording_.close();
@@ -224,6 +232,7 @@ class RecorderNode {
   std::deque<TopicCounts> counts_;  // by topic handle; a deque never moves its elements
   std::unique_ptr<dds::Reader<msg::LaserScanPubSubType>> scans_;
   std::unique_ptr<dds::Reader<msg::ImuPubSubType>> imu_;
+  std::unique_ptr<dds::Reader<msg::TwistWithCovarianceStampedPubSubType>> velocity_;
   std::thread writer_;
   std::atomic<bool> writer_failed_{false};
   std::exception_ptr writer_error_;

@@ -57,6 +57,16 @@ void ScanQueue::push_odometry(const OdometrySample& sample) {
   changed_.notify_all();
 }
 
+void ScanQueue::push_velocity(const VelocitySample& sample) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++velocity_received_;
+    velocity_.push_back(sample);
+    if (velocity_.size() > max_samples_) velocity_.pop_front();
+  }
+  changed_.notify_all();
+}
+
 double ScanQueue::stamp_of(const ReceivedScan& scan) {
   return dds::from_msg_time(scan.message.header().stamp());
 }
@@ -69,10 +79,11 @@ std::optional<ScanQueue::Work> ScanQueue::wait_for_scan(std::chrono::millisecond
     const double stamp = stamp_of(scans_.front());
     return newest_imu_stamp_ >= stamp && (!wait_for_odometry_ || newest_odometry_stamp_ >= stamp);
   });
-  Work work{std::move(scans_.front()), std::move(imu_), std::move(odometry_)};
+  Work work{std::move(scans_.front()), std::move(imu_), std::move(odometry_), std::move(velocity_)};
   scans_.pop_front();
   imu_.clear();
   odometry_.clear();
+  velocity_.clear();
   return work;
 }
 
@@ -89,6 +100,11 @@ std::uint64_t ScanQueue::scans_skipped() const {
 std::uint64_t ScanQueue::odometry_received() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return odometry_received_;
+}
+
+std::uint64_t ScanQueue::velocity_received() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return velocity_received_;
 }
 
 std::uint64_t ScanQueue::imu_dropped() const {

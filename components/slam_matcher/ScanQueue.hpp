@@ -1,9 +1,9 @@
-// Between the DDS threads and the matching thread: IMU and odometry samples queue up (the pipeline
-// needs them all, in order); scans queue up only within a backlog: a waiting scan older than the
-// newest by more than max_backlog_s (sensor time) is dropped and counted as skipped. So scans that
-// arrive in a burst (a RELIABLE reader delivers in order, and a fragment resent over a lossy link
-// holds back the scans behind it) are all matched, while a matcher that falls behind works on
-// fresh scans and memory stays bounded. A backlog of 0 keeps only the newest scan.
+// Between the DDS threads and the matching thread: IMU, odometry and velocity samples queue up (the
+// pipeline needs them all, in order); scans queue up only within a backlog: a waiting scan older
+// than the newest by more than max_backlog_s (sensor time) is dropped and counted as skipped. So
+// scans that arrive in a burst (a RELIABLE reader delivers in order, and a fragment resent over a
+// lossy link holds back the scans behind it) are all matched, while a matcher that falls behind
+// works on fresh scans and memory stays bounded. A backlog of 0 keeps only the newest scan.
 #pragma once
 
 #include <chrono>
@@ -38,6 +38,8 @@ class ScanQueue {
   void push_scan(ReceivedScan scan);
   void push_imu(const ImuSample& sample);
   void push_odometry(const OdometrySample& sample);
+  // Not waited for: a velocity that comes late is one the IMU prior does without.
+  void push_velocity(const VelocitySample& sample);
 
   // Waits up to `timeout` for a scan; returns the oldest waiting one with every IMU and odometry
   // sample received so far. `grace`: after a scan arrives, how long to wait for an IMU sample (and,
@@ -47,6 +49,7 @@ class ScanQueue {
     ReceivedScan scan;
     std::deque<ImuSample> imu;
     std::deque<OdometrySample> odometry;
+    std::deque<VelocitySample> velocity;
   };
   std::optional<Work> wait_for_scan(std::chrono::milliseconds timeout,
                                     std::chrono::milliseconds grace);
@@ -55,6 +58,7 @@ class ScanQueue {
   std::uint64_t scans_skipped() const;
   std::uint64_t imu_dropped() const;
   std::uint64_t odometry_received() const;
+  std::uint64_t velocity_received() const;
 
  private:
   static double stamp_of(const ReceivedScan& scan);
@@ -66,6 +70,7 @@ class ScanQueue {
   double max_backlog_s_;
   std::deque<ImuSample> imu_;
   std::deque<OdometrySample> odometry_;
+  std::deque<VelocitySample> velocity_;
   bool wait_for_odometry_;
   std::size_t max_samples_;
   double newest_imu_stamp_ = -1e300;
@@ -74,6 +79,7 @@ class ScanQueue {
   std::uint64_t scans_skipped_ = 0;
   std::uint64_t imu_dropped_ = 0;
   std::uint64_t odometry_received_ = 0;
+  std::uint64_t velocity_received_ = 0;
 };
 
 }  // namespace uavslam::matcher

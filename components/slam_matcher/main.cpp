@@ -4,7 +4,9 @@
 // --geometry-from-scan, from each scan message as a planar scanner at the body origin (replayed
 // 2D logs: lidar_driver --source carmen:FILE). With `icp.motion_prior: odometry` in the SLAM
 // config it also subscribes `odom` (wheel odometry, imu_bridge --source carmen:FILE) and gives each
-// scan the odometry's motion since the last scan that got a pose as the ICP's start.
+// scan the odometry's motion since the last scan that got a pose as the ICP's start; with
+// `icp.motion_prior: imu` and `motion.fuse_velocity` it subscribes `velocity` (the autopilot's
+// estimate, imu_bridge) and the IMU prior fuses it.
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -15,6 +17,7 @@
 #include <msg/MapPointsPubSubTypes.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 #include <CLI/CLI.hpp>
 
 #include "ScanQueue.hpp"
@@ -77,6 +80,7 @@ class MatcherNode {
                  queue_.push_scan({m, to_seconds(info.source_timestamp)});
                }),
         odometry_(make_odometry_reader(node)),
+        velocity_(make_velocity_reader(node)),
         imu_(participant_, dds::topic_name(vehicle_, dds::kImuTopic),
              node.profile(dds::kImuTopic, "sensor_reader"),
              [this](const msg::Imu& m, const eprosima::fastdds::dds::SampleInfo&) {
@@ -107,6 +111,7 @@ class MatcherNode {
     qos_.input(scans_);
     qos_.input(imu_);
     if (odometry_) qos_.input(*odometry_);
+    if (velocity_) qos_.input(*velocity_);
     qos_.output(pose_);
     qos_.output(map_points_);
     qos_.output(status_);
@@ -133,9 +138,24 @@ class MatcherNode {
         });
   }
 
+  // The autopilot's velocity, with the IMU prior and motion.fuse_velocity; created before the imu
+  // reader as the odometry's is.
+  std::unique_ptr<dds::Reader<msg::TwistWithCovarianceStampedPubSubType>> make_velocity_reader(
+      const process::NodeOptions& node) {
+    if (!slam_.inertial_prior() || !slam_.config().motion.fuse_velocity) return nullptr;
+    return std::make_unique<dds::Reader<msg::TwistWithCovarianceStampedPubSubType>>(
+        participant_, dds::topic_name(vehicle_, dds::kVelocityTopic),
+        node.profile(dds::kVelocityTopic, "sensor_reader"),
+        [this](const msg::TwistWithCovarianceStamped& m,
+               const eprosima::fastdds::dds::SampleInfo&) {
+          queue_.push_velocity(dds::from_msg(m));
+        });
+  }
+
   void process(matcher::ScanQueue::Work& work) {
     for (const ImuSample& sample : work.imu) slam_.add_imu(sample);
     for (const OdometrySample& sample : work.odometry) slam_.add_odometry(sample);
+    for (const VelocitySample& sample : work.velocity) slam_.add_velocity(sample);
     const Scan scan = dds::from_msg(work.scan.message, geometry_for(work.scan.message));
     const std::uint64_t skipped = queue_.scans_skipped();
     const VehicleScan result = slam_.process_scan(scan, skipped - counts_.skipped);
@@ -184,6 +204,11 @@ class MatcherNode {
                 << " scans matched with the prior, " << prior->scans_without_prior()
                 << " without (no odometry near the scan or the last posed scan)\n";
     }
+    if (velocity_) {
+      std::cerr << "slam_matcher: velocity: " << queue_.velocity_received() << " samples received, "
+                << slam_.inertial_prior()->rejected_velocities()
+                << " dropped (non-finite, out of order or without a stated accuracy)\n";
+    }
   }
 
   std::string vehicle_;
@@ -198,7 +223,8 @@ class MatcherNode {
   dds::Writer<msg::MapPointsPubSubType> map_points_;
   dds::Writer<msg::MatcherStatusPubSubType> status_;
   dds::Reader<msg::LaserScanPubSubType> scans_;
-  std::unique_ptr<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>> odometry_;  // or none
+  std::unique_ptr<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>> odometry_;   // or none
+  std::unique_ptr<dds::Reader<msg::TwistWithCovarianceStampedPubSubType>> velocity_;  // or none
   dds::Reader<msg::ImuPubSubType> imu_;
   dds::MatcherCounts counts_;
   std::uint64_t statuses_ = 0;
@@ -232,7 +258,8 @@ void apply_own_config(const CLI::App& app, const io::YamlReader& section, Matche
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "slam_matcher: subscribes scan and imu (and odom with icp.motion_prior: odometry), runs "
+      "slam_matcher: subscribes scan and imu (and odom with icp.motion_prior: odometry, velocity "
+      "with icp.motion_prior: imu and motion.fuse_velocity), runs "
       "the SLAM pipeline, publishes pose, map_points and matcher_status"};
   uavslam::process::NodeOptions node;
   uavslam::MatcherOptions options;

@@ -103,6 +103,29 @@ ImuSample from_msg(const msg::Imu& message) {
   return sample;
 }
 
+msg::TwistWithCovarianceStamped to_msg(const VelocitySample& sample, std::uint64_t seq,
+                                       const Source& source) {
+  msg::TwistWithCovarianceStamped m;
+  m.header(make_header(sample.stamp, seq, source));
+  m.linear(to_msg(sample.velocity));
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c)
+      m.covariance()[static_cast<std::size_t>(6 * r + c)] = sample.covariance(r, c);
+  }
+  return m;
+}
+
+VelocitySample from_msg(const msg::TwistWithCovarianceStamped& message) {
+  VelocitySample sample;
+  sample.stamp = from_msg_time(message.header().stamp());
+  sample.velocity = from_msg(message.linear());
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c)
+      sample.covariance(r, c) = message.covariance()[static_cast<std::size_t>(6 * r + c)];
+  }
+  return sample;
+}
+
 msg::PoseWithCovarianceStamped to_msg(const Pose& pose, float quality, std::uint64_t scan_seq,
                                       std::uint64_t seq, const Source& source) {
   msg::PoseWithCovarianceStamped m;

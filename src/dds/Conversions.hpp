@@ -9,6 +9,7 @@
 #include <msg/LaserScan.h>
 #include <msg/MapPoints.h>
 #include <msg/Pose.h>
+#include <msg/Twist.h>
 
 #include "core/Types.hpp"
 
@@ -34,6 +35,11 @@ Scan from_msg(const msg::LaserScan& message, std::shared_ptr<const ScanGeometry>
 
 msg::Imu to_msg(const ImuSample& sample, std::uint64_t seq, const Source& source);
 ImuSample from_msg(const msg::Imu& message);
+
+// The linear velocity and its covariance (the 6x6's upper-left block); the angular part zero.
+msg::TwistWithCovarianceStamped to_msg(const VelocitySample& sample, std::uint64_t seq,
+                                       const Source& source);
+VelocitySample from_msg(const msg::TwistWithCovarianceStamped& message);
 
 // quality: 0 (lost) .. 1; scan_seq: the scan the pose came from.
 msg::PoseWithCovarianceStamped to_msg(const Pose& pose, float quality, std::uint64_t scan_seq,

@@ -14,7 +14,10 @@ inline constexpr char kPoseTopic[] = "pose";                     // PoseWithCova
 inline constexpr char kMapPointsTopic[] = "map_points";          // MapPoints, map_points
 inline constexpr char kMapTopic[] = "map";                       // OccupancyMap, map
 inline constexpr char kMatcherStatusTopic[] = "matcher_status";  // MatcherStatus, status
-inline constexpr char kOdometryTopic[] = "odom";  // PoseWithCovarianceStamped, sensor
+inline constexpr char kOdometryTopic[] = "odom";      // PoseWithCovarianceStamped, sensor
+inline constexpr char kVelocityTopic[] = "velocity";  // TwistWithCovarianceStamped, sensor
+// `velocity`: the autopilot's velocity estimate (optical flow, VIO) in the orientation source's
+// frame, for the IMU motion prior (motion.fuse_velocity).
 // `odom`: wheel odometry, the pose of the scanner (position, heading) in the odometry's own frame
 // at the stamp of the scan it belongs to; the Pose type fits it (a stamped position + orientation,
 // a covariance slot), quality is 1 and scan_seq the scan's index in a replayed log.

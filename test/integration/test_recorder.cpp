@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <msg/ImuPubSubTypes.h>
 #include <msg/LaserScanPubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
@@ -157,19 +158,22 @@ class Sensors {
   explicit Sensors(int domain)
       : participant_(domain, dds::default_profiles_path(), "uavslam_loopback", "sensors"),
         scans_(participant_, dds::topic_name(kVehicle, dds::kScanTopic), "sensor_writer"),
-        imu_(participant_, dds::topic_name(kVehicle, dds::kImuTopic), "sensor_writer") {}
+        imu_(participant_, dds::topic_name(kVehicle, dds::kImuTopic), "sensor_writer"),
+        velocity_(participant_, dds::topic_name(kVehicle, dds::kVelocityTopic), "sensor_writer") {}
 
   // Waits until the recorder's readers have matched us: a BEST_EFFORT sample sent before that is
   // not delivered, so wait for the recorder to say both of its readers have.
   ::testing::AssertionResult matched(const process::ChildProcess& recorder) {
-    if (!scans_.wait_for_matched(1, 30s) || !imu_.wait_for_matched(1, 30s)) {
+    if (!scans_.wait_for_matched(1, 30s) || !imu_.wait_for_matched(1, 30s) ||
+        !velocity_.wait_for_matched(1, 30s)) {
       return ::testing::AssertionFailure() << "no recorder matched\n" << recorder.log();
     }
     const bool said = eventually(
         [&] {
           const std::string text = recorder.log();
           return text.find("rec/scan: 1 writer(s) matched") != std::string::npos &&
-                 text.find("rec/imu: 1 writer(s) matched") != std::string::npos;
+                 text.find("rec/imu: 1 writer(s) matched") != std::string::npos &&
+                 text.find("rec/velocity: 1 writer(s) matched") != std::string::npos;
         },
         30s);
     if (!said) return ::testing::AssertionFailure() << recorder.log();
@@ -189,6 +193,18 @@ class Sensors {
     return ::testing::AssertionSuccess();
   }
 
+  // `count` velocities of the autopilot, 1 ms apart.
+  ::testing::AssertionResult publish_velocities(std::uint64_t count) {
+    for (std::uint64_t k = 0; k < count; ++k) {
+      msg::TwistWithCovarianceStamped m;
+      m.header().seq(velocity_sent_);
+      m.linear().x(0.1 * double(velocity_sent_++));
+      if (!velocity_.write(m)) return ::testing::AssertionFailure() << "velocity";
+      std::this_thread::sleep_for(1ms);
+    }
+    return ::testing::AssertionSuccess();
+  }
+
   std::uint64_t scans_sent() const { return scans_sent_; }
   std::uint64_t imu_sent() const { return imu_sent_; }
 
@@ -196,7 +212,8 @@ class Sensors {
   dds::Participant participant_;
   dds::Writer<msg::LaserScanPubSubType> scans_;
   dds::Writer<msg::ImuPubSubType> imu_;
-  std::uint64_t scans_sent_ = 0, imu_sent_ = 0;
+  dds::Writer<msg::TwistWithCovarianceStampedPubSubType> velocity_;
+  std::uint64_t scans_sent_ = 0, imu_sent_ = 0, velocity_sent_ = 0;
 };
 
 class Recorder : public test::ProcessTest {
@@ -237,17 +254,23 @@ TEST_F(Recorder, RecordsEveryScanAndImuSampleAndStopsCleanly) {
         << "batch " << batch << ": " << samples_in(file) << " of " << expected << " recorded\n"
         << recorder.log();
   }
+  // The autopilot's velocity, where the vehicle has one, is recorded as well.
+  ASSERT_TRUE(sensors.publish_velocities(10));
+  ASSERT_TRUE(eventually([&] { return samples_in(file) >= 610; }, 30s)) << recorder.log();
   EXPECT_EQ(recorder.stop(10s, SIGTERM), 0) << recorder.log();
   EXPECT_THAT(recorder.log(),
               HasSubstr("rec/scan: 100 received, 100 written, 0 dropped, 0 lost to write errors"));
   EXPECT_THAT(recorder.log(),
               HasSubstr("rec/imu: 500 received, 500 written, 0 dropped, 0 lost to write errors"));
+  EXPECT_THAT(
+      recorder.log(),
+      HasSubstr("rec/velocity: 10 received, 10 written, 0 dropped, 0 lost to write errors"));
   EXPECT_EQ(io::rolled_files(path("flight.mcap")), std::vector<std::string>{file});
 
   // Complete (SIGTERM closed it: summary and Footer), in the recording conventions.
   io::McapIndexedReader indexed(file);
   ASSERT_TRUE(indexed.has_summary()) << indexed.summary_problem();
-  ASSERT_EQ(indexed.channels().size(), 2u);
+  ASSERT_EQ(indexed.channels().size(), 3u);
   std::map<std::string, std::uint16_t> channel_of;
   for (const auto& [id, channel] : indexed.channels()) {
     channel_of[channel.topic] = id;
@@ -257,15 +280,20 @@ TEST_F(Recorder, RecordsEveryScanAndImuSampleAndStopsCleanly) {
     EXPECT_EQ(channel.metadata.at("dds_type"), schema.name);
     EXPECT_EQ(std::optional<std::string>(schema.data), dds::idl_schema(schema.name));
   }
-  ASSERT_EQ(channel_of.size(), 2u);
+  ASSERT_EQ(channel_of.size(), 3u);
   EXPECT_EQ(indexed.schemas().at(indexed.channels().at(channel_of["rec/scan"]).schema_id).name,
             "uavslam::msg::LaserScan");
   EXPECT_EQ(indexed.schemas().at(indexed.channels().at(channel_of["rec/imu"]).schema_id).name,
             "uavslam::msg::Imu");
+  EXPECT_EQ(indexed.schemas().at(indexed.channels().at(channel_of["rec/velocity"]).schema_id).name,
+            "uavslam::msg::TwistWithCovarianceStamped");
 
-  std::vector<io::mcap::Message> scans, imu;
+  std::vector<io::mcap::Message> scans, imu, velocities;
   const io::McapReadReport report = indexed.read_messages(0, [&](const io::mcap::Message& m) {
-    (m.channel_id == channel_of["rec/scan"] ? scans : imu).push_back(m);
+    (m.channel_id == channel_of["rec/scan"]  ? scans
+     : m.channel_id == channel_of["rec/imu"] ? imu
+                                             : velocities)
+        .push_back(m);
     EXPECT_GT(m.publish_time, 0u);
     EXPECT_LE(m.publish_time, m.log_time) << "one host, one clock";
     return true;
@@ -278,11 +306,14 @@ TEST_F(Recorder, RecordsEveryScanAndImuSampleAndStopsCleanly) {
     EXPECT_EQ(scans[i].sequence, i);
   }
   EXPECT_TRUE(decode<msg::ImuPubSubType>(imu[321]) == imu_number(321));
+  ASSERT_EQ(velocities.size(), 10u);
+  EXPECT_DOUBLE_EQ(decode<msg::TwistWithCovarianceStampedPubSubType>(velocities[7]).linear().x(),
+                   0.7);
 
   // --dump lists it for people.
   const Dumped listed = dump(file);
   EXPECT_EQ(listed.exit_code, 0) << listed.output;
-  EXPECT_THAT(listed.output, HasSubstr("600 messages on 2 channels"));
+  EXPECT_THAT(listed.output, HasSubstr("610 messages on 3 channels"));
   EXPECT_THAT(listed.output, ContainsRegex("rec/scan +uavslam::msg::LaserScan +100 messages"));
   EXPECT_THAT(listed.output, HasSubstr("\ncomplete\n"));
 }
@@ -334,7 +365,7 @@ TEST_F(Recorder, RollsOverToNumberedFilesThatEachStandAlone) {
   for (const std::string& file : files) {
     const io::McapListing listing = io::list_mcap(file);
     EXPECT_TRUE(listing.report.complete) << file << ": " << listing.report.problem;
-    EXPECT_EQ(listing.channels.size(), 2u) << "every file declares every channel: " << file;
+    EXPECT_EQ(listing.channels.size(), 3u) << "every file declares every channel: " << file;
     EXPECT_LE(fs::file_size(file), 60000u) << file;
     scans += io::messages_on(listing, "rec/scan");
     imu += io::messages_on(listing, "rec/imu");
@@ -448,7 +479,7 @@ class RecorderCompression : public Recorder {
     EXPECT_EQ(scans, 20u);
     const Dumped listed = dump(file);
     EXPECT_EQ(listed.exit_code, 0) << listed.output;
-    EXPECT_THAT(listed.output, HasSubstr("60 messages on 2 channels"));
+    EXPECT_THAT(listed.output, HasSubstr("60 messages on 3 channels"));
     std::vector<std::string> compressions;
     for (const io::mcap::ChunkIndex& index : indexed.chunk_indexes()) {
       compressions.push_back(index.compression);
