@@ -5,11 +5,13 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <system_error>
 
 #include <msg/ImuPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 
 #include "common/IncompatibleQos.hpp"
 #include "common/StopRequest.hpp"
@@ -152,11 +154,23 @@ void add_mavlink_options(CLI::App& app, MavlinkOptions& options) {
                  "own rate")
       ->check(CLI::Range(0.0, kMaxStreamRate))
       ->capture_default_str();
+  app.add_option("--mavlink-velocity-sigma", options.velocity_sigma,
+                 "mavlink: publish the autopilot's velocity (LOCAL_POSITION_NED) on `velocity`, "
+                 "stated to this many m/s; 0: not. Only where the autopilot's velocity comes from "
+                 "its own optical flow or VIO, not from the poses it gets from us")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--mavlink-velocity-rate", options.velocity_rate,
+                 "mavlink: Hz of LOCAL_POSITION_NED to ask the autopilot for, when its velocity "
+                 "is published; 0: leave the autopilot's own rate")
+      ->check(CLI::Range(0.0, kMaxStreamRate))
+      ->capture_default_str();
 }
 
 std::vector<std::string> mavlink_config_keys() {
-  return {"mavlink_bind", "mavlink_pose", "mavlink_status_period", "mavlink_attitude_rate",
-          "mavlink_imu_rate"};
+  return {"mavlink_bind",          "mavlink_pose",     "mavlink_status_period",
+          "mavlink_attitude_rate", "mavlink_imu_rate", "mavlink_velocity_sigma",
+          "mavlink_velocity_rate"};
 }
 
 void apply_mavlink_config(const CLI::App& app, const io::YamlReader& section,
@@ -183,6 +197,14 @@ void apply_mavlink_config(const CLI::App& app, const io::YamlReader& section,
     options.imu_rate = section.get_double_or("mavlink_imu_rate", options.imu_rate,
                                              io::NumberRange::between(0.0, kMaxStreamRate));
   }
+  if (unset(app, "--mavlink-velocity-sigma")) {
+    options.velocity_sigma = section.get_double_or("mavlink_velocity_sigma", options.velocity_sigma,
+                                                   io::NumberRange::non_negative());
+  }
+  if (unset(app, "--mavlink-velocity-rate")) {
+    options.velocity_rate = section.get_double_or("mavlink_velocity_rate", options.velocity_rate,
+                                                  io::NumberRange::between(0.0, kMaxStreamRate));
+  }
 }
 
 bool is_mavlink_source(const std::string& source) {
@@ -205,6 +227,8 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
   }
   session_options.attitude_rate = options.attitude_rate;
   session_options.imu_rate = options.imu_rate;
+  session_options.velocity_sigma = options.velocity_sigma;
+  session_options.velocity_rate = options.velocity_rate;
   mavlink::AutopilotSession session(session_options);
   std::mutex session_mutex;  // the session and link: main loop vs the pose reader's thread
   const mavlink::AutopilotSession::Send send = [&link](const std::vector<std::uint8_t>& bytes) {
@@ -213,6 +237,11 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
 
   dds::Participant participant(node.domain, profiles_path(node), node.participant_profile,
                                "imu_bridge");
+  std::optional<dds::Writer<msg::TwistWithCovarianceStampedPubSubType>> velocity;
+  if (options.velocity_sigma > 0.0) {
+    velocity.emplace(participant, dds::topic_name(node.vehicle, dds::kVelocityTopic),
+                     node.profile(dds::kVelocityTopic, "sensor_writer"));
+  }
   dds::Writer<msg::ImuPubSubType> writer(participant, dds::topic_name(node.vehicle, dds::kImuTopic),
                                          node.profile(dds::kImuTopic, "sensor_writer"));
   dds::Reader<msg::PoseWithCovarianceStampedPubSubType> poses(
@@ -226,7 +255,13 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
             << link->description() << ", sending " << poses.topic() << " back as "
             << (options.pose_message == "odometry" ? "ODOMETRY" : "VISION_POSITION_ESTIMATE")
             << " (domain " << node.domain << "); asking for " << stream_rate(options.attitude_rate)
-            << " ATTITUDE_QUATERNION and " << stream_rate(options.imu_rate) << " HIGHRES_IMU\n";
+            << " ATTITUDE_QUATERNION and " << stream_rate(options.imu_rate) << " HIGHRES_IMU";
+  if (velocity) {
+    std::cerr << "; publishing " << velocity->topic() << " from "
+              << stream_rate(options.velocity_rate) << " LOCAL_POSITION_NED, stated to "
+              << options.velocity_sigma << " m/s";
+  }
+  std::cerr << "\n";
 
   const dds::Source imu_source{"imu", node.vehicle};
   std::uint64_t seq = 0;
@@ -234,6 +269,12 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
   const mavlink::AutopilotSession::OnImu publish = [&](const ImuSample& sample) {
     qos.output(writer);
     writer.write(dds::to_msg(sample, seq++, imu_source));
+  };
+  std::uint64_t velocity_seq = 0;
+  const mavlink::AutopilotSession::OnVelocity publish_velocity = [&](const VelocitySample& sample) {
+    if (!velocity) return;
+    qos.output(*velocity);
+    velocity->write(dds::to_msg(sample, velocity_seq++, imu_source));
   };
   std::vector<std::uint8_t> buffer(4096);
   bool heard = false;
@@ -244,7 +285,7 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
     const std::size_t got = link->receive(buffer.data(), buffer.size(), kReceiveTimeoutMs);
     const double now = host_now();
     const std::lock_guard<std::mutex> lock(session_mutex);
-    session.receive(buffer.data(), got, now, publish, send);
+    session.receive(buffer.data(), got, now, publish, send, publish_velocity);
     session.tick(now, send);
     if (!heard && session.autopilot_heard()) {
       heard = true;
@@ -259,7 +300,9 @@ int bridge_autopilot(const NodeOptions& node, const SimSourceOptions& source,
   }
   const std::lock_guard<std::mutex> lock(session_mutex);
   print_status(session, link->description(), options.status_period, frames_at_status);
-  std::cerr << "imu_bridge: published " << seq << " samples from the autopilot (stopped)\n";
+  std::cerr << "imu_bridge: published " << seq << " samples from the autopilot";
+  if (velocity) std::cerr << " and " << velocity_seq << " velocities";
+  std::cerr << " (stopped)\n";
   return qos.exit_code();
 }
 

@@ -18,7 +18,9 @@ std::int64_t nanoseconds(double seconds) {
 
 std::vector<StreamRequest> wanted_streams(const SessionOptions& options) {
   return {{static_cast<std::uint16_t>(kAttitudeQuaternion), options.attitude_rate},
-          {static_cast<std::uint16_t>(kHighresImu), options.imu_rate}};
+          {static_cast<std::uint16_t>(kHighresImu), options.imu_rate},
+          {static_cast<std::uint16_t>(kLocalPositionNed),
+           options.velocity_sigma > 0.0 ? options.velocity_rate : 0.0}};
 }
 
 }  // namespace
@@ -30,12 +32,14 @@ AutopilotSession::AutopilotSession(const SessionOptions& options)
                          options.command_attempts) {}
 
 void AutopilotSession::receive(const std::uint8_t* data, std::size_t size, double host_now,
-                               const OnImu& on_imu, const Send& send) {
-  reader_.feed(data, size, [&](const Frame& frame) { handle(frame, host_now, on_imu, send); });
+                               const OnImu& on_imu, const Send& send,
+                               const OnVelocity& on_velocity) {
+  reader_.feed(data, size,
+               [&](const Frame& frame) { handle(frame, host_now, on_imu, send, on_velocity); });
 }
 
 void AutopilotSession::handle(const Frame& frame, double host_now, const OnImu& on_imu,
-                              const Send& send) {
+                              const Send& send, const OnVelocity& on_velocity) {
   switch (frame.message_id) {
     case kHeartbeat:
       handle_heartbeat(frame, host_now);
@@ -66,6 +70,9 @@ void AutopilotSession::handle(const Frame& frame, double host_now, const OnImu& 
                        Eigen::Vector3d(a.rollspeed, a.pitchspeed, a.yawspeed), host_now, on_imu);
       return;
     }
+    case kLocalPositionNed:
+      publish_velocity(decode_local_position_ned(frame.payload), host_now, on_velocity);
+      return;
     case kAttitude: {
       if (quaternions_seen_) return;
       const Attitude a = decode_attitude(frame.payload);
@@ -154,6 +161,21 @@ void AutopilotSession::publish_attitude(std::uint32_t time_boot_ms,
   sample.linear_acceleration = flu_from_frd(acceleration_frd_);
   ++counts_.imu_samples;
   on_imu(sample);
+}
+
+void AutopilotSession::publish_velocity(const LocalPositionNed& local, double host_now,
+                                        const OnVelocity& on_velocity) {
+  if (options_.velocity_sigma <= 0.0 || !on_velocity) return;
+  const Eigen::Vector3d ned(local.vx, local.vy, local.vz);
+  if (!ned.allFinite()) return;
+  VelocitySample sample;
+  sample.stamp = clock_.host_time(static_cast<std::int64_t>(local.time_boot_ms) * 1'000'000)
+                     .value_or(host_now);
+  sample.velocity = enu_from_ned(ned);
+  sample.covariance =
+      options_.velocity_sigma * options_.velocity_sigma * Eigen::Matrix3d::Identity();
+  ++counts_.velocity_samples;
+  on_velocity(sample);
 }
 
 void AutopilotSession::tick(double host_now, const Send& send) {

@@ -11,6 +11,10 @@
 // not asked, the autopilot's own rate stays). Asked again when the autopilot reboots: its
 // HEARTBEAT comes back after a silence longer than heartbeat_timeout, or from another system id.
 //
+// With options.velocity_sigma > 0, one velocity per LOCAL_POSITION_NED (asked for at
+// velocity_rate), in ENU, stated to velocity_sigma (the message carries no accuracy): only for an
+// autopilot whose velocity comes from its own aiding (optical flow, VIO), not from our poses.
+//
 // One `imu` sample per ATTITUDE_QUATERNION (or per ATTITUDE while no ATTITUDE_QUATERNION has
 // arrived), with the attitude's rates and the newest HIGHRES_IMU's accelerations (zero before
 // one arrived). Stamped by the attitude's time_boot_ms mapped to host time; before the clock is
@@ -43,6 +47,8 @@ struct SessionOptions {
   double timesync_period = 1.0;    // s
   double attitude_rate = 200.0;    // Hz of ATTITUDE_QUATERNION to ask for; 0: do not ask
   double imu_rate = 200.0;         // Hz of HIGHRES_IMU to ask for; 0: do not ask
+  double velocity_sigma = 0.0;     // m/s stated for LOCAL_POSITION_NED's velocity; 0: not read
+  double velocity_rate = 20.0;     // Hz of LOCAL_POSITION_NED to ask for (when read); 0: do not ask
   double command_timeout = 1.0;    // s to wait for a COMMAND_ACK before sending again
   int command_attempts = 3;        // transmissions of one request before giving up
   double heartbeat_timeout = 3.0;  // s of silence after which a HEARTBEAT means a reboot
@@ -51,6 +57,7 @@ struct SessionOptions {
 struct SessionCounts {
   std::uint64_t heartbeats = 0;        // from the autopilot
   std::uint64_t imu_samples = 0;       // handed on
+  std::uint64_t velocity_samples = 0;  // handed on
   std::uint64_t timesync_answers = 0;  // to our requests
   std::uint64_t poses_sent = 0;
   std::uint64_t poses_withheld = 0;  // quality 0: dead-reckoned, no scan confirmed them
@@ -62,13 +69,14 @@ class AutopilotSession {
  public:
   using Send = std::function<void(const std::vector<std::uint8_t>&)>;
   using OnImu = std::function<void(const ImuSample&)>;
+  using OnVelocity = std::function<void(const VelocitySample&)>;
 
   explicit AutopilotSession(const SessionOptions& options = {});
 
-  // Bytes from the autopilot, received at host_now (s): on_imu for each sample they complete,
-  // send for the answers they need.
+  // Bytes from the autopilot, received at host_now (s): on_imu (on_velocity) for each sample
+  // they complete, send for the answers they need.
   void receive(const std::uint8_t* data, std::size_t size, double host_now, const OnImu& on_imu,
-               const Send& send);
+               const Send& send, const OnVelocity& on_velocity = {});
   // The periodic HEARTBEAT and TIMESYNC request and the stream requests, when due.
   void tick(double host_now, const Send& send);
   // One pose to the autopilot, with the reset counter's rule (PoseEncoder.hpp).
@@ -82,7 +90,10 @@ class AutopilotSession {
   std::vector<std::string> take_reports() { return interval_requests_.take_reports(); }
 
  private:
-  void handle(const Frame& frame, double host_now, const OnImu& on_imu, const Send& send);
+  void handle(const Frame& frame, double host_now, const OnImu& on_imu, const Send& send,
+              const OnVelocity& on_velocity);
+  void publish_velocity(const LocalPositionNed& local, double host_now,
+                        const OnVelocity& on_velocity);
   void handle_heartbeat(const Frame& frame, double host_now);
   void handle_timesync(const Frame& frame, double host_now, const Send& send);
   void handle_command_ack(const Frame& frame, double host_now);

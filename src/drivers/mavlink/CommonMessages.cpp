@@ -34,6 +34,9 @@ std::map<std::uint32_t, MessageDefinition> make_definitions() {
        base("float", "q3"), base("float", "q4"), base("float", "rollspeed"),
        base("float", "pitchspeed"), base("float", "yawspeed"),
        extension("float", "repr_offset_q", 4)});
+  add(kLocalPositionNed, "LOCAL_POSITION_NED",
+      {base("uint32_t", "time_boot_ms"), base("float", "x"), base("float", "y"), base("float", "z"),
+       base("float", "vx"), base("float", "vy"), base("float", "vz")});
   add(kCommandLong, "COMMAND_LONG",
       {base("uint8_t", "target_system"), base("uint8_t", "target_component"),
        base("uint16_t", "command"), base("uint8_t", "confirmation"), base("float", "param1"),

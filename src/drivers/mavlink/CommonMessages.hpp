@@ -15,6 +15,7 @@ enum MessageId : std::uint32_t {
   kSystemTime = 2,
   kAttitude = 30,
   kAttitudeQuaternion = 31,
+  kLocalPositionNed = 32,
   kCommandLong = 76,
   kCommandAck = 77,
   kVisionPositionEstimate = 102,

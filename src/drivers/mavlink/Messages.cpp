@@ -105,6 +105,18 @@ Payload encode(const AttitudeQuaternion& m) {
       .payload();
 }
 
+Payload encode(const LocalPositionNed& m) {
+  return FieldWriter(kLocalPositionNed)
+      .set("time_boot_ms", m.time_boot_ms)
+      .set("x", m.x)
+      .set("y", m.y)
+      .set("z", m.z)
+      .set("vx", m.vx)
+      .set("vy", m.vy)
+      .set("vz", m.vz)
+      .payload();
+}
+
 Payload encode(const HighresImu& m) {
   return FieldWriter(kHighresImu)
       .set("time_usec", m.time_usec)
@@ -241,6 +253,19 @@ AttitudeQuaternion decode_attitude_quaternion(const Payload& p) {
   m.pitchspeed = r.get<float>("pitchspeed");
   m.yawspeed = r.get<float>("yawspeed");
   m.repr_offset_q = r.get_array<float, 4>("repr_offset_q");
+  return m;
+}
+
+LocalPositionNed decode_local_position_ned(const Payload& p) {
+  const FieldReader r(kLocalPositionNed, p);
+  LocalPositionNed m;
+  m.time_boot_ms = r.get<std::uint32_t>("time_boot_ms");
+  m.x = r.get<float>("x");
+  m.y = r.get<float>("y");
+  m.z = r.get<float>("z");
+  m.vx = r.get<float>("vx");
+  m.vy = r.get<float>("vy");
+  m.vz = r.get<float>("vz");
   return m;
 }
 

@@ -65,6 +65,14 @@ struct AttitudeQuaternion {
   std::array<float, 4> repr_offset_q{};
 };
 
+// The autopilot's local position and velocity estimate (from whatever aids its filter: optical
+// flow, VIO, GPS, or our own VISION_POSITION_ESTIMATE).
+struct LocalPositionNed {
+  std::uint32_t time_boot_ms = 0;
+  float x = 0, y = 0, z = 0;     // m, local NED
+  float vx = 0, vy = 0, vz = 0;  // m/s, local NED
+};
+
 struct HighresImu {
   std::uint64_t time_usec = 0;
   float xacc = 0, yacc = 0, zacc = 0;     // m/s^2, FRD body, specific force (gravity included)
@@ -132,6 +140,7 @@ Payload encode(const Heartbeat& m);
 Payload encode(const SystemTime& m);
 Payload encode(const Attitude& m);
 Payload encode(const AttitudeQuaternion& m);
+Payload encode(const LocalPositionNed& m);
 Payload encode(const HighresImu& m);
 Payload encode(const Timesync& m);
 Payload encode(const CommandLong& m);
@@ -143,6 +152,7 @@ Heartbeat decode_heartbeat(const Payload& p);
 SystemTime decode_system_time(const Payload& p);
 Attitude decode_attitude(const Payload& p);
 AttitudeQuaternion decode_attitude_quaternion(const Payload& p);
+LocalPositionNed decode_local_position_ned(const Payload& p);
 HighresImu decode_highres_imu(const Payload& p);
 Timesync decode_timesync(const Payload& p);
 CommandLong decode_command_long(const Payload& p);

@@ -4,7 +4,9 @@
 // sample (ATTITUDE every 20th), HEARTBEAT and SYSTEM_TIME once a second, all stamped with its own
 // boot clock (offset and drift settable). It answers TIMESYNC requests, and records the
 // VISION_POSITION_ESTIMATE / ODOMETRY it receives to a file, one line each. Faults on request:
-// MAVLink 1 frames, signed frames, corrupted checksums, garbage bytes, lost frames.
+// MAVLink 1 frames, signed frames, corrupted checksums, garbage bytes, lost frames. With
+// --local-position it also sends LOCAL_POSITION_NED every 10th IMU sample: the flight's true
+// velocity in the attitude's drifting heading frame (as from the autopilot's own optical flow).
 // It answers every COMMAND_LONG addressed to it with a COMMAND_ACK: MAV_CMD_SET_MESSAGE_INTERVAL
 // for a message it can stream ACCEPTED (DENIED with --refuse-intervals or for another message),
 // any other command UNSUPPORTED; --ignore-commands answers none. With --streams-on-request it
@@ -38,6 +40,7 @@
 #include "drivers/mavlink/Messages.hpp"
 #include "io/ScenarioFile.hpp"
 #include "sim/FlightSimulator.hpp"
+#include "sim/ImuSimulator.hpp"
 
 namespace uavslam::mavlink {
 namespace {
@@ -67,6 +70,7 @@ struct EmulatorOptions {
   bool streams_on_request = false;
   bool refuse_intervals = false;
   bool ignore_commands = false;
+  bool local_position = false;
   std::string record;
 };
 
@@ -74,7 +78,8 @@ struct EmulatorOptions {
 constexpr std::uint8_t kSystemId = 1;
 constexpr std::uint8_t kComponentId = 1;
 bool streamable(std::uint32_t id) {
-  return id == kAttitude || id == kAttitudeQuaternion || id == kHighresImu;
+  return id == kAttitude || id == kAttitudeQuaternion || id == kHighresImu ||
+         id == kLocalPositionNed;
 }
 
 // A stream asked for with SET_MESSAGE_INTERVAL, in flight time (s).
@@ -87,13 +92,15 @@ struct Tally {
   int attitude_sent = 0, dropped = 0, corrupted = 0, garbage_bursts = 0;
   int timesync_answered = 0, heartbeats_heard = 0, poses = 0;
   int highres_imu_sent = 0, interval_requests = 0, resends = 0, commands_answered = 0;
+  int local_positions_sent = 0;
   std::string intervals_asked;  // "ATTITUDE_QUATERNION 5000 us, ..."
 };
 
 class Emulator {
  public:
-  explicit Emulator(const EmulatorOptions& o)
-      : o_(o), writer_(kSystemId, kComponentId, o.v1 ? 1 : 2), record_(o.record) {
+  // imu: the scenario's attitude source, whose heading frame the velocities are given in.
+  Emulator(const EmulatorOptions& o, const sim::ImuSpec& imu)
+      : o_(o), imu_(imu), writer_(kSystemId, kComponentId, o.v1 ? 1 : 2), record_(o.record) {
     socket_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
     peer_.sin_family = AF_INET;
     peer_.sin_port = htons(static_cast<std::uint16_t>(o.port));
@@ -113,7 +120,9 @@ class Emulator {
     int index = 0;
     while (!stop_signal && simulator.next_imu(sample) && sample.stamp - t0 <= o_.duration) {
       listen_until(start + (sample.stamp - t0));
-      send_sample(sample, sample.stamp - t0, index++);
+      send_sample(sample, sample.stamp - t0, index);
+      if (o_.local_position) send_local_position(simulator, sample.stamp, sample.stamp - t0, index);
+      ++index;
     }
     listen_until(host_now() + o_.linger);
   }
@@ -184,6 +193,32 @@ class Emulator {
       append(datagram, frame(kAttitude, encode(euler)));
     }
     if (!datagram.empty()) send(datagram);
+  }
+
+  // Whether LOCAL_POSITION_NED goes out with the sample: every 10th (20 Hz at 200 Hz), or as asked.
+  bool local_position_due(double t, int index) {
+    if (!o_.streams_on_request) return index % 10 == 0;
+    return due(kLocalPositionNed, t, index);
+  }
+
+  void send_local_position(const sim::FlightSimulator& simulator, double stamp, double t,
+                           int index) {
+    if (!local_position_due(t, index)) return;
+    const Eigen::Quaterniond drift = sim::heading_drift_at(imu_, simulator.trajectory(), stamp);
+    const Eigen::Vector3d position =
+        ned_from_enu(drift * simulator.ground_truth_at(stamp).position);
+    const Eigen::Vector3d velocity =
+        ned_from_enu(drift * simulator.trajectory().velocity_at(stamp));
+    LocalPositionNed local;
+    local.time_boot_ms = static_cast<std::uint32_t>(autopilot_ns(host_now()) / 1'000'000);
+    local.x = static_cast<float>(position.x());
+    local.y = static_cast<float>(position.y());
+    local.z = static_cast<float>(position.z());
+    local.vx = static_cast<float>(velocity.x());
+    local.vy = static_cast<float>(velocity.y());
+    local.vz = static_cast<float>(velocity.z());
+    send(frame(kLocalPositionNed, encode(local)));
+    ++tally_.local_positions_sent;
   }
 
   void append_attitude(std::vector<std::uint8_t>& datagram, const AttitudeQuaternion& attitude,
@@ -293,6 +328,7 @@ class Emulator {
   }
 
   EmulatorOptions o_;
+  sim::ImuSpec imu_;
   FrameWriter writer_;
   FrameReader reader_;
   std::ofstream record_;
@@ -335,13 +371,16 @@ int main(int argc, char** argv) {
   app.add_flag("--refuse-intervals", o.refuse_intervals,
                "answer MAV_CMD_SET_MESSAGE_INTERVAL with MAV_RESULT_DENIED");
   app.add_flag("--ignore-commands", o.ignore_commands, "answer no COMMAND_LONG");
+  app.add_flag("--local-position", o.local_position,
+               "also send LOCAL_POSITION_NED (the true velocity) every 10th IMU sample");
   app.add_option("--record", o.record, "file for the poses received")->required();
   CLI11_PARSE(app, argc, argv);
   std::signal(SIGINT, uavslam::mavlink::request_stop);
   std::signal(SIGTERM, uavslam::mavlink::request_stop);
   try {
-    uavslam::sim::FlightSimulator simulator(uavslam::io::load_scenario(o.scenario));
-    uavslam::mavlink::Emulator emulator(o);
+    const uavslam::sim::Scenario scenario = uavslam::io::load_scenario(o.scenario);
+    uavslam::sim::FlightSimulator simulator(scenario);
+    uavslam::mavlink::Emulator emulator(o, scenario.imu);
     const double start = o.start_at > 0 ? o.start_at : uavslam::mavlink::host_now() + 0.5;
     emulator.fly(simulator, start);
     const auto& t = emulator.tally();
@@ -352,7 +391,8 @@ int main(int argc, char** argv) {
               << t.highres_imu_sent << " HIGHRES_IMU, received " << t.interval_requests
               << " SET_MESSAGE_INTERVAL (" << t.resends << " resends; "
               << (t.intervals_asked.empty() ? "none" : t.intervals_asked) << "), answered "
-              << t.commands_answered << " commands" << std::endl;
+              << t.commands_answered << " commands, sent " << t.local_positions_sent
+              << " LOCAL_POSITION_NED" << std::endl;
   } catch (const std::exception& e) {
     std::cerr << "autopilot_emulator: " << e.what() << "\n";
     return 2;

@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 #include <msg/ImuPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 
 #include "ProcessTest.hpp"
 #include "dds/Conversions.hpp"
@@ -190,6 +191,43 @@ TEST_F(ImuBridgeMavlinkTest, PublishesTheAutopilotAttitudeInOurFrames) {
   std::nth_element(spacing.begin(), spacing.begin() + static_cast<long>(spacing.size() / 2),
                    spacing.end());
   EXPECT_NEAR(spacing[spacing.size() / 2], 1.0 / kImuRate, 1.5e-3);
+}
+
+// An autopilot whose velocity comes from its own optical flow (the emulator's LOCAL_POSITION_NED,
+// the true velocity): with --mavlink-velocity-sigma imu_bridge publishes it on `velocity`, in our
+// frames (ENU) and on our clock, stated to that sigma, one per message.
+TEST_F(ImuBridgeMavlinkTest, PublishesTheAutopilotsVelocityWhenAskedTo) {
+  constexpr int kDomain = 223;
+  constexpr int kPort = 24573;
+  constexpr double kDuration = 3.0;
+  dds::Participant participant(kDomain, dds::default_profiles_path(), "uavslam_loopback", "test");
+  std::mutex mutex;
+  std::vector<VelocitySample> velocities;
+  dds::Reader<msg::TwistWithCovarianceStampedPubSubType> reader(
+      participant, dds::topic_name("uav1", dds::kVelocityTopic), "sensor_reader",
+      [&](const msg::TwistWithCovarianceStamped& message, const auto&) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        velocities.push_back(dds::from_msg(message));
+      });
+  const double start = host_now() + 1.0;
+  const ImuRun run = run_imu(kDomain, kPort, start, kDuration,
+                             emulator_argv(kPort, kDuration, {"--local-position"}),
+                             {"--mavlink-velocity-sigma", "0.05"});
+  ASSERT_EQ(run.bridge_exit, 0) << run.bridge_log;
+  const long sent = count_in(run.emulator_log, "LOCAL_POSITION_NED");
+  ASSERT_GT(sent, 50) << run.emulator_log;  // 3 s at 20 Hz
+  reader.wait_for_received(static_cast<std::size_t>(sent), 10s);
+  const std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_EQ(static_cast<long>(velocities.size()), sent) << run.bridge_log;
+  sim::FlightSimulator truth(io::load_scenario(kScenario));
+  double worst = 0.0;
+  for (const VelocitySample& v : velocities) {
+    // Stamped by the autopilot's clock mapped to ours; the flight started at `start`.
+    const double t = truth.start_time() + (v.stamp - start);
+    worst = std::max(worst, (v.velocity - truth.trajectory().velocity_at(t)).norm());
+    EXPECT_TRUE(v.covariance.isApprox(0.0025 * Eigen::Matrix3d::Identity()));
+  }
+  EXPECT_LT(worst, 0.02) << "a few ms of stamp error at most";
 }
 
 TEST_F(ImuBridgeMavlinkTest, CountsFaultsAndKeepsPublishing) {

@@ -58,6 +58,7 @@ TEST(MavlinkDefinitions, DeriveThePublishedCrcExtraAndLengths) {
       {kSystemTime, "SYSTEM_TIME", 137, 12, 12},
       {kAttitude, "ATTITUDE", 39, 28, 28},
       {kAttitudeQuaternion, "ATTITUDE_QUATERNION", 246, 32, 48},
+      {kLocalPositionNed, "LOCAL_POSITION_NED", 185, 28, 28},
       {kCommandLong, "COMMAND_LONG", 152, 33, 33},
       {kCommandAck, "COMMAND_ACK", 143, 3, 10},
       {kVisionPositionEstimate, "VISION_POSITION_ESTIMATE", 158, 32, 117},

@@ -302,6 +302,55 @@ TEST(MavlinkPoses, ADeadReckonedPoseIsWithheldFromTheAutopilot) {
   EXPECT_EQ(link.session().counts().poses_withheld, 1u);
 }
 
+// LOCAL_POSITION_NED's velocity, in NED, becomes a VelocitySample in ENU stated to the
+// configured sigma, and its stream is asked for; without a sigma the message is not read and
+// not asked for (an autopilot whose velocity comes from our own poses must not feed them back).
+TEST(MavlinkVelocity, TheAutopilotsVelocityIsReadInOurFramesOnlyWhenAsked) {
+  LocalPositionNed local;
+  local.time_boot_ms = 1000;
+  local.vx = 1.0f;   // north
+  local.vy = 2.0f;   // east
+  local.vz = -0.5f;  // up
+  for (const double sigma : {0.0, 0.05}) {
+    SessionOptions options = SessionLink::options(0.0, 0.0);
+    options.velocity_sigma = sigma;
+    options.velocity_rate = 25.0;
+    AutopilotSession session(options);
+    FrameWriter autopilot(kAutopilotSystem, kAutopilotComponent);
+    std::vector<VelocitySample> velocities;
+    std::vector<Frame> sent;
+    FrameReader reader;
+    const AutopilotSession::Send keep = [&](const Bytes& bytes) {
+      reader.feed(bytes.data(), bytes.size(), [&](const Frame& f) { sent.push_back(f); });
+    };
+    const auto deliver = [&](const Bytes& bytes, double now) {
+      session.receive(
+          bytes.data(), bytes.size(), now, [](const ImuSample&) {}, keep,
+          [&](const VelocitySample& v) { velocities.push_back(v); });
+    };
+    deliver(px4_heartbeat(autopilot), 0.0);
+    session.tick(0.0, keep);
+    deliver(autopilot.frame(kLocalPositionNed, encode(local)), 1.0);
+    std::vector<CommandLong> asked;
+    for (const Frame& f : sent) {
+      if (f.message_id == kCommandLong) asked.push_back(decode_command_long(f.payload));
+    }
+    if (sigma == 0.0) {
+      EXPECT_TRUE(velocities.empty());
+      EXPECT_TRUE(asked.empty());
+      continue;
+    }
+    ASSERT_EQ(asked.size(), 1u);
+    EXPECT_EQ(asked[0].param1, static_cast<float>(kLocalPositionNed));
+    EXPECT_EQ(asked[0].param2, 40000.0f);  // us: 25 Hz
+    ASSERT_EQ(velocities.size(), 1u);
+    EXPECT_TRUE(velocities[0].velocity.isApprox(Vec3(2.0, 1.0, 0.5))) << velocities[0].velocity;
+    EXPECT_TRUE(velocities[0].covariance.isApprox(0.0025 * Eigen::Matrix3d::Identity()));
+    EXPECT_EQ(velocities[0].stamp, 1.0) << "stamped on arrival until the clocks are synchronised";
+    EXPECT_EQ(session.counts().velocity_samples, 1u);
+  }
+}
+
 TEST(MavlinkStreamRequests, AGroundStationHeartbeatIsNotTheAutopilot) {
   SessionLink link;
   FrameWriter ground_station(255, 190);
