@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -67,19 +68,21 @@ ReplayCounts replay_recorded(const SimSourceOptions& options, dds::RecordedMessa
 }
 
 // A sensor process's whole replay of a recording: waits for the subscribers, publishes every
-// `Msg` of the stream's channels with `writer`, says what it published (`what`: e.g. "scans")
+// `Msg` of the stream's channels with `writer` (and hands any other message to `also`, when
+// given: a second channel the process publishes), says what it published (`what`: e.g. "scans")
 // and how the replay ended. The process's exit code: 0, or 1 when no subscriber came, the
 // recording had no `channel` or a peer's QoS was incompatible.
 template <typename Msg, typename Writer>
 int replay_recording(const SimSourceOptions& options, dds::RecordedMessageStream& stream,
                      Writer& writer, const std::string& channel, const std::string& what,
-                     const char* process) {
+                     const char* process,
+                     const std::function<bool(const dds::RecordedMessage&)>& also = {}) {
   if (!wait_for_subscribers(writer, options.wait_for_subscribers, process)) return 1;
   QosWatch qos(process);
   const ReplayCounts counts =
       replay_recorded(options, stream, process, [&](const dds::RecordedMessage& message) {
         const auto* sample = std::get_if<Msg>(&message.sample);
-        if (!sample) return false;
+        if (!sample) return also ? also(message) : false;
         qos.output(writer);
         return writer.write(*sample);
       });

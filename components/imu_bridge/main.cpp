@@ -185,6 +185,9 @@ int replay_odometry(const process::NodeOptions& node, const process::SimSourceOp
 std::set<std::string> recorded_imu_topics(const process::NodeOptions& node,
                                           const process::SimSourceOptions& o) {
   std::set<std::string> topics = process::recorded_topics(node.vehicle, dds::kImuTopic);
+  const std::set<std::string> velocity =
+      process::recorded_topics(node.vehicle, dds::kVelocityTopic);
+  topics.insert(velocity.begin(), velocity.end());
   if (o.max_scans > 0) {
     const std::set<std::string> scans = process::recorded_topics(node.vehicle, dds::kScanTopic);
     topics.insert(scans.begin(), scans.end());
@@ -199,11 +202,21 @@ int replay_recorded_imu(const process::NodeOptions& node, const process::SimSour
   dds::Participant participant(node.domain, process::profiles_path(node), node.participant_profile,
                                "imu_bridge");
   const std::string topic = dds::topic_name(node.vehicle, dds::kImuTopic);
+  // The autopilot's velocity, where the recording has it; created before the imu writer, as the
+  // matcher creates its reader (--wait-for-subscribers counts imu readers).
+  dds::Writer<msg::TwistWithCovarianceStampedPubSubType> velocity(
+      participant, dds::topic_name(node.vehicle, dds::kVelocityTopic),
+      node.profile(dds::kVelocityTopic, "sensor_writer"));
   dds::Writer<msg::ImuPubSubType> writer(participant, topic,
                                          node.profile(dds::kImuTopic, "sensor_writer"));
-  std::cerr << "imu_bridge: publishing " << topic << " from " << log_path << " at " << o.rate
+  std::cerr << "imu_bridge: publishing " << topic << " (and " << velocity.topic()
+            << " where recorded) from " << log_path << " at " << o.rate
             << "x the recorded rate (domain " << node.domain << ")\n";
-  return process::replay_recording<msg::Imu>(o, stream, writer, "imu", "samples", "imu_bridge");
+  return process::replay_recording<msg::Imu>(
+      o, stream, writer, "imu", "samples", "imu_bridge", [&](const dds::RecordedMessage& message) {
+        const auto* sample = std::get_if<msg::TwistWithCovarianceStamped>(&message.sample);
+        return sample && velocity.write(*sample);
+      });
 }
 
 int publish(const process::NodeOptions& node, const process::SimSourceOptions& o,

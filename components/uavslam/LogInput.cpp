@@ -114,6 +114,11 @@ class SimulatedInput : public LogInput {
       event.imu = log_->imu[imu_++];
       return event;
     }
+    if (velocity_ < log_->velocity.size() && log_->velocity[velocity_].stamp <= scan.stamp) {
+      LogEvent event(LogEvent::Kind::Velocity);
+      event.velocity = log_->velocity[velocity_++];
+      return event;
+    }
     LogEvent event(LogEvent::Kind::Scan);
     event.scan = scan;
     event.output_stamp = scan.stamp;
@@ -130,6 +135,7 @@ class SimulatedInput : public LogInput {
   std::shared_ptr<const SensorLog> log_;
   std::size_t scan_ = 0;
   std::size_t imu_ = 0;
+  std::size_t velocity_ = 0;
   StampRange stamps_;
 };
 
@@ -207,7 +213,7 @@ class McapInput : public LogInput {
   McapInput(const std::string& path, std::shared_ptr<const ScanGeometry> geometry,
             const std::string& prefix, std::size_t expected)
       : stream_(path, {prefix + dds::kScanTopic, prefix + dds::kImuTopic,
-                       prefix + dds::kGroundTruthTopic}),
+                       prefix + dds::kVelocityTopic, prefix + dds::kGroundTruthTopic}),
         geometry_(std::move(geometry)),
         expected_(expected) {}
 
@@ -237,6 +243,12 @@ class McapInput : public LogInput {
       release_scan();
       LogEvent event(LogEvent::Kind::Imu);
       event.imu = dds::from_msg(*imu);
+      ready_.push_back(std::move(event));
+    } else if (const auto* velocity =
+                   std::get_if<msg::TwistWithCovarianceStamped>(&message->sample)) {
+      release_scan();
+      LogEvent event(LogEvent::Kind::Velocity);
+      event.velocity = dds::from_msg(*velocity);
       ready_.push_back(std::move(event));
     } else if (const auto* scan = std::get_if<msg::LaserScan>(&message->sample)) {
       release_scan();

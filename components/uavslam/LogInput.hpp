@@ -17,12 +17,13 @@
 namespace uavslam::cli {
 
 struct LogEvent {
-  enum class Kind { Imu, Odometry, Scan };
+  enum class Kind { Imu, Odometry, Velocity, Scan };
   explicit LogEvent(Kind k) : kind(k) {}
 
   Kind kind;
   ImuSample imu;
   OdometrySample odometry;
+  VelocitySample velocity;
   Scan scan;
   double output_stamp = 0.0;       // the scan's own stamp for outputs (CARMEN: ipc_timestamp)
   std::optional<Pose> truth;       // the true body pose at the scan, when the input knows it
@@ -63,15 +64,15 @@ struct HeadingJitter {
 // position, before the scan itself. Throws io::FileError when the file cannot be opened.
 std::unique_ptr<LogInput> open_carmen_input(const std::string& path, HeadingJitter jitter = {});
 
-// The `scan`, `imu` and (when there) `ground_truth` channels of an MCAP recording (the convention
-// of dds/McapChannels.hpp; with a vehicle prefix, "uav1/scan", when the file has only that
-// vehicle's or `vehicle` names it) in log-time order: IMU samples and scans as the pipeline takes
-// them, each scan with the true pose recorded at its stamp as its truth and start. `geometry`: the
-// sensor's (mount, mirror); null: each scan's beam layout as a planar scanner at the body origin
-// (dds::MessageScanGeometry). A file cut short is read up to its damage (damage() says where).
-// io::FileError naming the file when it cannot be opened, is not MCAP, holds no whole message, or
-// has scans but no IMU channel (nothing to orient them), or several vehicles' scans and no
-// `vehicle` to choose.
+// The `scan`, `imu` and (when there) `velocity` and `ground_truth` channels of an MCAP recording
+// (the convention of dds/McapChannels.hpp; with a vehicle prefix, "uav1/scan", when the file has
+// only that vehicle's or `vehicle` names it) in log-time order: IMU samples and scans as the
+// pipeline takes them, each scan with the true pose recorded at its stamp as its truth and start.
+// `geometry`: the sensor's (mount, mirror); null: each scan's beam layout as a planar scanner at
+// the body origin (dds::MessageScanGeometry). A file cut short is read up to its damage (damage()
+// says where). io::FileError naming the file when it cannot be opened, is not MCAP, holds no whole
+// message, or has scans but no IMU channel (nothing to orient them), or several vehicles' scans and
+// no `vehicle` to choose.
 std::unique_ptr<LogInput> open_mcap_input(const std::string& path,
                                           std::shared_ptr<const ScanGeometry> geometry,
                                           const std::string& vehicle = "");

@@ -27,6 +27,9 @@ class Pass {
       case LogEvent::Kind::Odometry:
         slam_.add_odometry(event.odometry);
         break;
+      case LogEvent::Kind::Velocity:
+        slam_.add_velocity(event.velocity);
+        break;
       case LogEvent::Kind::Scan:
         take_scan(event);
         break;

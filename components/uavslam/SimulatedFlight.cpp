@@ -3,13 +3,16 @@
 #include <chrono>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include <msg/ImuPubSubTypes.h>
 #include <msg/LaserScanPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 
 #include "common/StopRequest.hpp"
+#include "dds/Conversions.hpp"
 #include "dds/McapChannels.hpp"
 #include "dds/RecordedMessages.hpp"
 #include "dds/SimulatedSensorMessages.hpp"
@@ -65,11 +68,19 @@ void write_flight_log(const std::string& path, const sim::Scenario& scenario,
   RecordedChannel<msg::LaserScanPubSubType> scans(writer, dds::kScanTopic);
   RecordedChannel<msg::ImuPubSubType> imu(writer, dds::kImuTopic);
   RecordedChannel<msg::PoseWithCovarianceStampedPubSubType> truth(writer, dds::kGroundTruthTopic);
+  std::optional<RecordedChannel<msg::TwistWithCovarianceStampedPubSubType>> velocity;
+  if (!log.velocity.empty()) velocity.emplace(writer, dds::kVelocityTopic);
   std::size_t next_imu = 0;
+  std::size_t next_velocity = 0;
   const auto write_imu_up_to = [&](double stamp) {
     for (; next_imu < log.imu.size() && log.imu[next_imu].stamp <= stamp; ++next_imu) {
       imu.write(log.imu[next_imu].stamp,
                 dds::simulated_imu_message(log.imu[next_imu], next_imu, ""));
+    }
+    for (; next_velocity < log.velocity.size() && log.velocity[next_velocity].stamp <= stamp;
+         ++next_velocity) {
+      const VelocitySample& v = log.velocity[next_velocity];
+      velocity->write(v.stamp, dds::to_msg(v, next_velocity, {"imu", ""}));
     }
   };
   for (std::size_t i = 0; i < log.scans.size(); ++i) {

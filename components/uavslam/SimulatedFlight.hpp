@@ -28,8 +28,9 @@ struct SensorLog {
 SensorLog simulate_sensors(const sim::Scenario& scenario);
 
 // Writes the flight as an MCAP recording (dds/McapChannels.hpp's convention) with the channels
-// `scan` (LaserScan), `imu` (Imu) and `ground_truth` (PoseWithCovarianceStamped, the true body
-// pose at each scan), the messages as lidar_driver and imu_bridge publish them
+// `scan` (LaserScan), `imu` (Imu), `ground_truth` (PoseWithCovarianceStamped, the true body
+// pose at each scan) and, when the flight has a velocity source, `velocity`
+// (TwistWithCovarianceStamped), the messages as lidar_driver and imu_bridge publish them
 // (dds/SimulatedSensorMessages.hpp), in time order: at equal stamps the IMU samples first, then
 // the truth, then the scan, as the pipeline takes them. log_time = publish_time = the stamp.
 // io::FileError when the file cannot be written.

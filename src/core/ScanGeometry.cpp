@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 
 #include "core/Types.hpp"
@@ -12,6 +13,12 @@ ScanGeometry ScanGeometry::planar(double angle_min, double angle_increment, int 
     g.directions.emplace_back(std::cos(a), std::sin(a), 0.0);
   }
   return g;
+}
+
+bool ScanGeometry::has_vertical_beams() const {
+  const double sin45 = std::sqrt(0.5);
+  return std::any_of(directions.begin(), directions.end(),
+                     [&](const Vec3& d) { return std::abs((mount.linear() * d).z()) > sin45; });
 }
 
 }  // namespace uavslam

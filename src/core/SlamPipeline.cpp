@@ -93,7 +93,8 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   if (match.outcome != ScanOutcome::Accepted) return carried_by_prior(report, start, prior);
 
   // Beyond the seed: what the scan saw, and whether the match agrees with the motion prior there.
-  const Vec3 position = keep_what_the_scan_saw(report, match, start, prior);
+  const Vec3 position =
+      keep_what_the_scan_saw(report, match, start, prior, scan.geometry->has_vertical_beams());
   const std::optional<PriorDistance> distance =
       distance_from_prior(report, match, start, prediction, prior);
   if (distance && !report.relocalised) {
@@ -206,11 +207,14 @@ ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected) const {
 //   Sigma = Sigma_scan + (I - P) Sigma_predicted (I - P)
 // With no predicted covariance (no motion model), the vehicle may have gone recovery.max_speed
 // per second along a blind direction since the last pose.
+// Height counts only for a sensor with floor beams, and with the per-axis weights that give them
+// to z (icp.split_axes): a planar scanner's z is not the scan's to see, nor degenerate.
 Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult& match,
-                                          const Pose& start, const Eigen::Matrix3d& prior) {
+                                          const Pose& start, const Eigen::Matrix3d& prior,
+                                          bool vertical_beams) {
   if (config_.degeneracy.threshold <= 0.0) return match.position;
   const bool with_yaw = config_.icp.heading == HeadingMode::EveryScan || match.yaw != 0.0;
-  const bool measures_height = config_.icp.split_axes;
+  const bool measures_height = config_.icp.split_axes && vertical_beams;
   report.seen = observability(
       scan_information(match.pairs, match.position, with_yaw, config_.degeneracy.min_sigma),
       config_.degeneracy.threshold, measures_height);

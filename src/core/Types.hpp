@@ -63,6 +63,10 @@ struct ScanGeometry {
   // A planar scanner in the sensor's x-y plane: beam i at angle_min + i * angle_increment
   // (the sensor_msgs/LaserScan convention).
   static ScanGeometry planar(double angle_min, double angle_increment, int beams);
+
+  // Some beams point more up or down than sideways on the body (a floor mirror, the rings of a 3D
+  // scanner): the sensor can measure height. A planar scanner's cannot.
+  bool has_vertical_beams() const;
 };
 
 // One sweep of the range sensor: a range per beam of its geometry (NaN/inf/out of range = no

@@ -45,6 +45,8 @@ const std::map<std::string, Decoder>& decoders() {
       {schema_name<msg::MapPointsPubSubType>(), decode_as<msg::MapPointsPubSubType>},
       {schema_name<msg::MatcherStatusPubSubType>(), decode_as<msg::MatcherStatusPubSubType>},
       {schema_name<msg::OccupancyMapPubSubType>(), decode_as<msg::OccupancyMapPubSubType>},
+      {schema_name<msg::TwistWithCovarianceStampedPubSubType>(),
+       decode_as<msg::TwistWithCovarianceStampedPubSubType>},
   };
   return table;
 }

@@ -18,6 +18,7 @@
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/OccupancyMapPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 
 #include "dds/DdsError.hpp"
 
@@ -30,8 +31,9 @@ class MalformedMessage : public std::runtime_error {
 };
 
 // A sample of any wire type a recording can hold.
-using RecordedSample = std::variant<msg::LaserScan, msg::Imu, msg::PoseWithCovarianceStamped,
-                                    msg::MapPoints, msg::MatcherStatus, msg::OccupancyMap>;
+using RecordedSample =
+    std::variant<msg::LaserScan, msg::Imu, msg::PoseWithCovarianceStamped, msg::MapPoints,
+                 msg::MatcherStatus, msg::OccupancyMap, msg::TwistWithCovarianceStamped>;
 
 // The schema name of a wire type in a recording: what its PubSubType's getName() reports, e.g.
 // "uavslam::msg::LaserScan".

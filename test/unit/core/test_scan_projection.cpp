@@ -61,5 +61,18 @@ TEST(ScanProjection, KeepsEveryKthPointAsTheSeed) {
   EXPECT_EQ(keep_every_kth(Points{}, 5).size(), 0u);
 }
 
+// Whether a sensor can measure height: a planar scanner cannot; a floor mirror's beams, or the
+// same planar scanner mounted on its side, can.
+TEST(ScanGeometry, HasVerticalBeamsWhenSomePointUpOrDownOnTheBody) {
+  ScanGeometry planar = ScanGeometry::planar(-M_PI / 2, M_PI / 180, 181);
+  EXPECT_FALSE(planar.has_vertical_beams());
+  ScanGeometry mirrored = planar;
+  mirrored.directions.front() = Vec3(std::cos(1.3), 0.0, -std::sin(1.3));  // 74 deg down
+  EXPECT_TRUE(mirrored.has_vertical_beams());
+  ScanGeometry on_its_side = planar;
+  on_its_side.mount.linear() = Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()).toRotationMatrix();
+  EXPECT_TRUE(on_its_side.has_vertical_beams());
+}
+
 }  // namespace
 }  // namespace uavslam

@@ -237,6 +237,22 @@ TEST_F(PipelineInRoom, ARejectedScanWithAPriorIsDeadReckoned) {
 // scan says it stayed. Six sigmas and more apart: the match is rejected, counted, and the pose is
 // the prior's. Without the check the match is taken; so it is before the match noise has settled
 // (the gate measures in its scales).
+// A planar scanner has no floor beams: its z is not the scan's to measure, and a room that fixes
+// both horizontal directions leaves nothing degenerate (the tracking state stays `tracking`).
+TEST_F(PipelineInRoom, APlanarScannersHeightIsNotCalledDegenerate) {
+  config.nearest_neighbour.index = IndexKind::Exact;
+  config.degeneracy.threshold = 0.05;
+  ASSERT_TRUE(config.icp.split_axes);
+  SlamPipeline slam(config, start);
+  const double t = hover_to_settle(slam, 3);
+  slam.add_imu(level_imu(t));
+  const ScanReport r = slam.process_scan(room.scan_at(pose_at(start, t), t),
+                                         {Vec3::Zero(), 1e-4 * Eigen::Matrix3d::Identity()});
+  ASSERT_EQ(r.outcome, ScanOutcome::Accepted);
+  EXPECT_EQ(r.seen.degenerate, 0);
+  EXPECT_EQ(r.seen.observed(2, 2), 0.0) << "nor is it measured";
+}
+
 TEST_F(PipelineInRoom, AMatchThatDisagreesWithThePriorIsRejected) {
   config.nearest_neighbour.index = IndexKind::Exact;
   config.degeneracy.threshold = 0.05;  // gives the match its covariance
