@@ -16,8 +16,10 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <msg/ImuPubSubTypes.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 
 #include "MatcherListener.hpp"
 #include "ProcessTest.hpp"
@@ -118,6 +120,46 @@ TEST_F(McapReplay, ARecordedFlightReplaysIntoTheMatcherOnTrack) {
             << " m, vertical " << errors.ate_vertical_rmse << " m\n";
   EXPECT_LT(errors.ate_horizontal_rmse, 0.10);
   EXPECT_LT(errors.ate_vertical_rmse, 0.10);
+}
+
+// A flight with the autopilot's velocity (flow_corridor.yaml): imu_bridge replays the recording's
+// `velocity` channel beside `imu`, every sample of it.
+TEST_F(McapReplay, TheAutopilotsVelocityIsReplayedBesideTheImu) {
+  constexpr int kVelocityDomain = 201;
+  const std::string log = path("flow.mcap");
+  process::ChildProcess simulate(
+      {binary("uavslam"), "simulate", "--quiet", "--scenario",
+       std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/flow_corridor.yaml", "--out",
+       path("simulate"), "--log", log},
+      log_path("simulate"));
+  ASSERT_TRUE(simulate.wait(120s)) << simulate.log();
+  ASSERT_EQ(simulate.exit_code(), 0) << simulate.log();
+  std::size_t recorded = 0;
+  dds::RecordedMessageStream stream(log, {dds::kVelocityTopic});
+  while (stream.next()) ++recorded;
+  ASSERT_EQ(recorded, 541u) << "27 s at 20 Hz";
+
+  dds::Participant ground(kVelocityDomain, dds::default_profiles_path(), "uavslam_loopback",
+                          "test");
+  std::mutex mutex;
+  std::vector<VelocitySample> velocities;
+  dds::Reader<msg::TwistWithCovarianceStampedPubSubType> velocity_reader(
+      ground, dds::topic_name("uav1", dds::kVelocityTopic), "sensor_reader",
+      [&](const msg::TwistWithCovarianceStamped& m, const auto&) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        velocities.push_back(dds::from_msg(m));
+      });
+  dds::Reader<msg::ImuPubSubType> imu_reader(ground, dds::topic_name("uav1", dds::kImuTopic),
+                                             "sensor_reader", [](const msg::Imu&, const auto&) {});
+  process::ChildProcess imu(sensor("imu_bridge", kVelocityDomain, log, shared_start_time()),
+                            log_path("imu_bridge"));
+  ASSERT_TRUE(imu.wait(60s)) << imu.log();
+  EXPECT_EQ(imu.exit_code(), 0) << imu.log();
+  velocity_reader.wait_for_received(recorded, 10s);
+  const std::lock_guard<std::mutex> lock(mutex);
+  EXPECT_EQ(velocities.size(), recorded) << imu.log();
+  ASSERT_FALSE(velocities.empty());
+  EXPECT_TRUE(velocities.front().covariance.isApprox(0.0025 * Eigen::Matrix3d::Identity()));
 }
 
 TEST_F(McapReplay, ACutRecordingReplaysItsCompletePartAndSaysWhereItStopped) {
