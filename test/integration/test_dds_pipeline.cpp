@@ -35,7 +35,7 @@ using namespace std::chrono_literals;
 constexpr int kDomain = 171;              // this test's own DDS domain
 constexpr int kIncompatibleDomain = 190;  // the incompatible-QoS test's
 constexpr int kCorridorDomain = 179;      // the plain corridor's
-constexpr int kVelocityDomain = 181;      // the corridor with the autopilot's velocity
+constexpr int kVelocityDomain = 202;      // the corridor with the autopilot's velocity
 const std::string kScenario = std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/short.yaml";
 
 // What the ground saw of one scenario flown by lidar_driver, imu_bridge and slam_matcher (with
