@@ -32,7 +32,8 @@ std::optional<NoReturnCode> learn_flaser_no_return_code(const std::string& path)
     if (line.rfind("FLASER ", 0) != 0) continue;
     const std::vector<std::string_view> fields = split_fields(line);
     std::size_t beams = 0;
-    if (fields.size() < 2 || !parse_number(fields[1], beams) || fields.size() < beams + 2) continue;
+    // beams > size - 2, not size < beams + 2: a count near SIZE_MAX would wrap the sum.
+    if (fields.size() < 2 || !parse_number(fields[1], beams) || beams > fields.size() - 2) continue;
     for (std::size_t i = 0; i < beams; ++i) {
       float range = 0.0f;
       if (parse_number(fields[2 + i], range)) tally.add(range);

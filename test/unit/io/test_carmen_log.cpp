@@ -367,6 +367,20 @@ TEST(CarmenLogFreiburg, Fr079LogReadsWhole) {
   EXPECT_EQ(summary.beam_counts, std::set<std::size_t>{360});
 }
 
+// A beam count near SIZE_MAX (found by fuzz_carmen_reader) is no beam count: the no-return pass
+// skips the line rather than reading past it, as the reader reports it malformed.
+TEST_F(CarmenLogTest, AnImpossibleBeamCountIsSkippedByTheNoReturnPass) {
+  std::string text = "FLASER 18446744073709551615 1.5 2.5\n";
+  for (int i = 0; i < 30; ++i) text += flaser_line(3, 1.0 + i);
+  const std::string path = write_log(text);
+  // The 30 good lines alone: their largest range, 3.5, written 30 times and nothing just below.
+  const std::optional<NoReturnCode> code = learn_flaser_no_return_code(path);
+  ASSERT_TRUE(code);
+  EXPECT_EQ(code->range, 3.5f);
+  const CarmenLog log = read_carmen_log(path);
+  EXPECT_EQ(log.malformed_lines, 1u);
+}
+
 // Three scanners, three codes: the SICK's 81.83 and 81.91 (Intel, FR079) and ACES's 50.00.
 TEST(CarmenLogFreiburg, EachLogsNoReturnCodeIsLearned) {
   const std::vector<std::pair<std::string, float>> logs = {
