@@ -1,6 +1,7 @@
 // uavslam eval: trajectory errors of any estimate against a ground truth, both TUM files, or of
 // a planar estimate against the Freiburg benchmark's relations (Kümmerle et al. 2009).
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -10,6 +11,7 @@
 #include "eval/RelationMetric.hpp"
 #include "eval/ScanPairAlignment.hpp"
 #include "io/CarmenLog.hpp"
+#include "io/FileError.hpp"
 #include "io/RelationsFile.hpp"
 #include "io/TumFile.hpp"
 #include "io/YamlReader.hpp"
@@ -26,7 +28,8 @@ struct EvalOptions {
   double delta = 1.0;
   bool json = false;
   bool consistency = false;
-  std::string scans;  // a CARMEN log: align each relation's two scans (ScanPairAlignment)
+  std::string per_relation;  // a CSV file: each relation's errors
+  std::string scans;         // a CARMEN log: align each relation's two scans (ScanPairAlignment)
   std::string config;
   std::vector<std::string> overrides;
 };
@@ -55,9 +58,26 @@ void print_subset(std::ostream& out, const std::string& name, const eval::Relati
       << " of " << e.relations << " relations, " << e.unmatched << " unmatched\n";
 }
 
+// Each relation's errors, a line each ("t1,t2,span_s,translation_m,rotation_deg"; the last two
+// empty for an unmatched relation), to find where an estimate goes wrong.
+void write_per_relation(const std::string& path, const eval::RelationErrors& errors) {
+  std::ofstream out(path);
+  if (!out) throw io::file_error(path, "cannot be written");
+  out << "t1,t2,span_s,translation_m,rotation_deg\n" << std::setprecision(10);
+  for (const eval::RelationError& e : errors.each) {
+    out << e.t1 << ',' << e.t2 << ',' << e.t2 - e.t1 << ',';
+    if (e.translation) out << *e.translation;
+    out << ',';
+    if (e.rotation) out << *e.rotation * kDegreesPerRadian;
+    out << '\n';
+  }
+  if (!out) throw io::file_error(path, "could not be written whole");
+}
+
 int run_relations_eval(const EvalOptions& o) {
   const eval::RelationErrors errors = eval::compare_to_relations(
       io::read_planar_estimate(o.estimate), io::read_relations(o.relations));
+  if (!o.per_relation.empty()) write_per_relation(o.per_relation, errors);
   if (o.json) {
     const nlohmann::json j = {{"all", subset_json(errors.all)},
                               {"short_span_limit_s", errors.short_span_limit},
@@ -166,6 +186,11 @@ int run_scan_pair_eval(const EvalOptions& o) {
 }
 
 int run_eval(const EvalOptions& o) {
+  if (!o.per_relation.empty() && (o.relations.empty() || !o.scans.empty() || o.consistency)) {
+    throw io::ConfigError(
+        "--per-relation lists an estimate's errors: it needs --estimate and "
+        "--relations");
+  }
   if (!o.scans.empty()) {
     if (o.relations.empty()) throw io::ConfigError("--scans needs --relations");
     if (!o.estimate.empty() || o.consistency) {
@@ -231,6 +256,9 @@ void add_eval_command(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "print JSON instead of text");
+  cmd->add_option("--per-relation", options->per_relation,
+                  "with --relations: write each relation's errors to this CSV file "
+                  "(t1,t2,span_s,translation_m,rotation_deg)");
   cmd->add_flag("--consistency", options->consistency,
                 "with --relations and no --estimate: how well the relations agree with each "
                 "other (their triangles' closure: no estimate agrees with all three relations "

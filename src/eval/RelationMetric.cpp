@@ -138,6 +138,9 @@ RelationErrors compare_relation_estimates(const std::vector<Relation>& relations
     const bool is_short = std::abs(relation.t2 - relation.t1) < errors.short_span_limit;
     ++all.relations;
     if (is_short) ++short_span.relations;
+    RelationError& each = errors.each.emplace_back();
+    each.t1 = relation.t1;
+    each.t2 = relation.t2;
     if (i >= estimated.size() || !estimated[i]) {
       ++all.unmatched;
       if (is_short) ++short_span.unmatched;
@@ -148,6 +151,8 @@ RelationErrors compare_relation_estimates(const std::vector<Relation>& relations
         motion_between({relation.x, relation.y, relation.yaw}, {e.x, e.y, e.yaw});  // δ⁻¹ ⊕ δ̂
     const double translation = std::hypot(error.x, error.y);
     const double rotation = std::abs(error.theta);
+    each.translation = translation;
+    each.rotation = rotation;
     all.translation.push_back(translation);
     all.rotation.push_back(rotation);
     if (is_short) {

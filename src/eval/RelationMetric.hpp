@@ -27,10 +27,18 @@ struct RelationSubsetErrors {
   ErrorStatistics rotation;     // rad
 };
 
+// One relation's errors; none when t1 or t2 has no estimated pose.
+struct RelationError {
+  double t1 = 0.0, t2 = 0.0;          // s, the relation's scans
+  std::optional<double> translation;  // m
+  std::optional<double> rotation;     // rad
+};
+
 struct RelationErrors {
   RelationSubsetErrors all;
   RelationSubsetErrors short_span;  // |t2 - t1| < short_span_limit: local accuracy
   double short_span_limit = 5.0;    // s, the split the benchmark's published figures use
+  std::vector<RelationError> each;  // in the relations' order
 };
 
 // For each relation δ (true) the estimated motion is δ̂ = x̂(t1)⁻¹ ⊕ x̂(t2) and the error is

@@ -317,6 +317,23 @@ TEST_F(UavslamCli, EvalScoresAPlanarEstimateAgainstRelations) {
   EXPECT_NEAR(figures["all"]["rotation_deg"]["max"].get<double>(), 5.729577951, 1e-6);
   EXPECT_EQ(figures["short_span"]["relations"].get<int>(), 1);
 
+  // Each relation's errors, in the relations' order, for finding where an estimate goes wrong.
+  const std::string listing = (dir / "each.csv").string();
+  const CommandResult p = run("eval --relations " + relations + " --estimate " + estimate +
+                              " --per-relation " + listing);
+  ASSERT_EQ(p.exit_code, 0) << p.output;
+  std::ifstream each(listing);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(each, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_EQ(lines[0], "t1,t2,span_s,translation_m,rotation_deg");
+  EXPECT_EQ(lines[1], "100.5,101.5,1,0,0");
+  EXPECT_THAT(lines[2], ::testing::StartsWith("100.5,200.25,99.75,1,5.72957795"));
+  const CommandResult per_without = run("eval --estimate " + estimate + " --groundtruth " +
+                                        estimate + " --per-relation " + listing);
+  EXPECT_EQ(per_without.exit_code, 2) << per_without.output;
+  EXPECT_THAT(per_without.output, HasSubstr("--per-relation"));
+
   const std::string bad = write("bad.txt", "100.5 0 0 0\n101.5 1 0\n");
   const CommandResult b = run("eval --relations " + relations + " --estimate " + bad);
   EXPECT_EQ(b.exit_code, 2) << b.output;

@@ -141,6 +141,14 @@ TEST(RelationMetric, RelationsWithoutAnEstimateAreCountedAsUnmatched) {
   EXPECT_NEAR(e.all.translation.max, 0.0, 1e-12);
   EXPECT_EQ(e.short_span.relations, 3u);
   EXPECT_EQ(e.short_span.unmatched, 2u);
+  // Each relation listed in order, the unmatched ones without errors.
+  ASSERT_EQ(e.each.size(), 4u);
+  EXPECT_EQ(e.each[0].t2, 1.0);
+  ASSERT_TRUE(e.each[0].translation);
+  EXPECT_NEAR(*e.each[0].translation, 0.0, 1e-12);
+  EXPECT_FALSE(e.each[1].translation);
+  EXPECT_FALSE(e.each[2].rotation);
+  EXPECT_EQ(e.each[3].t2, 20.0);
 }
 
 // Motions estimated relation by relation (the scans' own alignment) score as an estimate would:
