@@ -55,6 +55,21 @@ TEST(Conversions, ImuRoundTrips) {
   EXPECT_EQ(back.linear_acceleration, s.linear_acceleration);
 }
 
+// The velocity and its covariance (the 6x6's linear block; the angular part left zero).
+TEST(Conversions, VelocityRoundTrips) {
+  VelocitySample v;
+  v.stamp = 12.25;
+  v.velocity = Vec3(1.0, -0.5, 0.1);
+  v.covariance << 0.01, 0.001, 0.0, 0.001, 0.02, 0.0, 0.0, 0.0, 0.03;
+  const msg::TwistWithCovarianceStamped m = to_msg(v, 5, kSource);
+  EXPECT_EQ(m.covariance()[7], 0.02);  // row 1, column 1 of the 6x6
+  EXPECT_EQ(m.covariance()[21], 0.0);  // the angular block: unknown
+  const VelocitySample back = from_msg(m);
+  EXPECT_NEAR(back.stamp, v.stamp, 1e-9);
+  EXPECT_EQ(back.velocity, v.velocity);
+  EXPECT_EQ(back.covariance, v.covariance);
+}
+
 TEST(Conversions, PoseRoundTrips) {
   Pose p;
   p.stamp = 100.5;

@@ -11,6 +11,7 @@
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/OccupancyMapPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <msg/TwistPubSubTypes.h>
 
 namespace uavslam::msg {
 namespace {
@@ -93,6 +94,15 @@ TEST(WireTypes, PoseRoundTrips) {
   pose.quality(0.87f);
   pose.scan_seq(99);
   EXPECT_EQ(round_trip<PoseWithCovarianceStampedPubSubType>(pose), pose);
+}
+
+TEST(WireTypes, TwistRoundTrips) {
+  TwistWithCovarianceStamped twist;
+  twist.header(header(21));
+  twist.linear(vector(0.8, -0.1, 0.05));
+  twist.angular(vector(0.0, 0.0, 0.3));
+  for (std::size_t i = 0; i < 36; ++i) twist.covariance()[i] = double(i) * 1e-4;
+  EXPECT_EQ(round_trip<TwistWithCovarianceStampedPubSubType>(twist), twist);
 }
 
 TEST(WireTypes, MapPointsRoundTrips) {
