@@ -142,6 +142,16 @@ sim::ImuSpec read_imu(const YamlReader& reader) {
   return imu;
 }
 
+sim::FaultSpec read_faults(const YamlReader& reader) {
+  reader.expect_keys_only({"late_scan_every", "late_scan_s"});
+  sim::FaultSpec faults;
+  faults.late_scan_every =
+      reader.get_int_or("late_scan_every", faults.late_scan_every, NumberRange::non_negative());
+  faults.late_scan_s =
+      reader.get_double_or("late_scan_s", faults.late_scan_s, NumberRange::non_negative());
+  return faults;
+}
+
 sim::VelocitySpec read_velocity(const YamlReader& reader) {
   reader.expect_keys_only({"rate_hz", "noise_std"});
   sim::VelocitySpec velocity;
@@ -155,7 +165,8 @@ sim::VelocitySpec read_velocity(const YamlReader& reader) {
 
 sim::Scenario load_scenario(const std::string& path) {
   const YamlReader root = YamlReader::from_file(path, "scenario");
-  root.expect_keys_only({"name", "seed", "world", "trajectory", "lidar", "imu", "velocity"});
+  root.expect_keys_only(
+      {"name", "seed", "world", "trajectory", "lidar", "imu", "velocity", "faults"});
   sim::Scenario scenario;
   scenario.name = root.get_string_or("name", std::filesystem::path(path).stem().string());
   scenario.seed = root.get_uint64_or("seed", scenario.seed);
@@ -164,6 +175,7 @@ sim::Scenario load_scenario(const std::string& path) {
   if (const auto lidar = root.find("lidar")) scenario.lidar = read_lidar(*lidar);
   if (const auto imu = root.find("imu")) scenario.imu = read_imu(*imu);
   if (const auto velocity = root.find("velocity")) scenario.velocity = read_velocity(*velocity);
+  if (const auto faults = root.find("faults")) scenario.faults = read_faults(*faults);
   return scenario;
 }
 

@@ -9,7 +9,8 @@ FlightSimulator::FlightSimulator(const Scenario& scenario)
       imu_(scenario.imu, scenario.seed),
       scan_clock_(trajectory_.start_time(), trajectory_.end_time(), scenario.lidar.rate_hz),
       imu_clock_(trajectory_.start_time(), trajectory_.end_time(), scenario.imu.rate_hz),
-      velocity_(scenario.velocity, scenario.imu, scenario.seed) {
+      velocity_(scenario.velocity, scenario.imu, scenario.seed),
+      faults_(scenario.faults) {
   if (scenario.velocity.rate_hz > 0.0) {
     velocity_clock_.emplace(trajectory_.start_time(), trajectory_.end_time(),
                             scenario.velocity.rate_hz);
@@ -19,7 +20,11 @@ FlightSimulator::FlightSimulator(const Scenario& scenario)
 bool FlightSimulator::next_scan(Scan& out) {
   if (next_scan_index_ >= scan_clock_.count()) return false;
   const double stamp = scan_clock_.stamp(next_scan_index_);
-  out = lidar_.scan_at(trajectory_.pose_at(stamp), stamp, next_scan_index_);
+  const int every = faults_.late_scan_every;
+  const bool late =
+      every > 0 && next_scan_index_ % std::uint64_t(every) == std::uint64_t(every) - 1;
+  const double taken = late ? stamp - faults_.late_scan_s : stamp;
+  out = lidar_.scan_at(trajectory_.pose_at(taken), stamp, next_scan_index_);
   ++next_scan_index_;
   return true;
 }

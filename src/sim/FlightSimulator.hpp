@@ -30,7 +30,8 @@ class FlightSimulator {
   FlightSimulator& operator=(const FlightSimulator&) = delete;
 
   // The next scan (stamps start, start + 1/rate_hz, ... up to end; sequence 0, 1, ...);
-  // false when the flight is over.
+  // false when the flight is over. A late scan (faults.late_scan_every) sees the world from
+  // where the body was faults.late_scan_s before its stamp.
   bool next_scan(Scan& out);
   // The next IMU sample (stamps start, start + 1/imu rate, ...); false when the flight is over.
   bool next_imu(ImuSample& out);
@@ -53,6 +54,7 @@ class FlightSimulator {
   SampleClock scan_clock_;
   SampleClock imu_clock_;
   VelocitySimulator velocity_;
+  FaultSpec faults_;
   std::optional<SampleClock> velocity_clock_;  // none without a velocity source
   std::uint64_t next_scan_index_ = 0;
   std::uint64_t next_imu_index_ = 0;

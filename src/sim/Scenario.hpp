@@ -53,6 +53,14 @@ struct VelocitySpec {
   double noise_std = 0.05;  // m/s per axis, white, as the samples' covariance states it
 };
 
+// Sensor faults to fly through (none unless a scenario says).
+struct FaultSpec {
+  // Every late_scan_every-th scan was taken late_scan_s before its stamp: a latency spike on the
+  // scanner's link (USB, serial) that the stamp does not show. 0: none.
+  int late_scan_every = 0;
+  double late_scan_s = 0.0;
+};
+
 struct Scenario {
   std::string name;
   WorldSpec world;
@@ -60,6 +68,7 @@ struct Scenario {
   LidarSpec lidar;
   ImuSpec imu;
   VelocitySpec velocity;
+  FaultSpec faults;
   std::uint64_t seed = 1;
 };
 

@@ -164,6 +164,19 @@ TEST_F(UavslamCli, TheAutopilotsVelocityCarriesTheCorridorThatABiasedImuLoses) {
   EXPECT_GT(imu_alone, 1.0);
 }
 
+// Every 20th scan taken 0.15 s before its stamp (late_scans.yaml): each such scan matches where
+// the vehicle was. The shipped gate on the prior refuses them; without it they pull the pose and
+// the map back by a tenth of a metre each time.
+TEST_F(UavslamCli, TheGateOnThePriorRefusesLateScans) {
+  const nlohmann::json gated = simulate(dir / "uav", "late_scans", "config/slam.yaml");
+  const nlohmann::json ungated =
+      simulate(dir / "open", "late_scans", "config/slam.yaml", "--set icp.prior_gate=0");
+  EXPECT_LE(ate_horizontal(gated), 0.10);
+  EXPECT_GT(ate_horizontal(ungated), 0.15);
+  EXPECT_GT(gated.at("scans").at("rejected_by_reason").at("disagrees_with_prior").get<int>(), 100)
+      << "of 360 late scans";
+}
+
 // An IMU whose yaw drifts 2 degrees a minute (yaw_drift.yaml): the shipped UAV config checks the
 // heading against the map (icp.heading periodic_check) and keeps the map straight; the seed's
 // heading, the IMU's as it is, bends it.

@@ -114,6 +114,7 @@ imu:
   accel_noise_std: 0.05
   accel_bias: [0.01, -0.02, 0.03]
 velocity: {rate_hz: 25, noise_std: 0.08}
+faults: {late_scan_every: 20, late_scan_s: 0.15}
 )"));
   const sim::Scenario s = load_scenario(path);
   EXPECT_EQ(s.name, "full");
@@ -145,6 +146,8 @@ velocity: {rate_hz: 25, noise_std: 0.08}
   EXPECT_EQ(s.imu.accel_bias, Vec3(0.01, -0.02, 0.03));
   EXPECT_EQ(s.velocity.rate_hz, 25.0);
   EXPECT_EQ(s.velocity.noise_std, 0.08);
+  EXPECT_EQ(s.faults.late_scan_every, 20);
+  EXPECT_EQ(s.faults.late_scan_s, 0.15);
   // Without the section the vehicle has no velocity source.
   EXPECT_EQ(load_scenario(write("plain.yaml", kMinimalScenario)).velocity.rate_hz, 0.0);
 }

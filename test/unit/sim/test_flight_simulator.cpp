@@ -100,6 +100,25 @@ TEST_F(FlightSimulatorTest, VelocityStreamIsTheTrueVelocityInTheImusHeadingFrame
   EXPECT_GT(worst, 0.0);
 }
 
+// A late scan (faults.late_scan_every): stamped as the others, it sees the world from where the
+// body was late_scan_s before; the scans around it are on time.
+TEST_F(FlightSimulatorTest, ALateScanSeesTheWorldFromEarlier) {
+  scenario_.lidar.range_noise_std = 0.0;
+  scenario_.faults.late_scan_every = 4;
+  scenario_.faults.late_scan_s = 0.5;
+  FlightSimulator simulator(scenario_);
+  const std::vector<Scan> scans = all_scans(simulator);
+  LidarSimulator lidar(scenario_.lidar, simulator.world(), scenario_.seed);
+  const Trajectory& trajectory = simulator.trajectory();
+  for (std::size_t k = 100; k < 108; ++k) {
+    const double stamp = scans[k].stamp;
+    EXPECT_EQ(stamp, simulator.start_time() + double(k) / scenario_.lidar.rate_hz);
+    const bool late = k % 4 == 3;
+    const Scan expected = lidar.scan_at(trajectory.pose_at(late ? stamp - 0.5 : stamp), stamp, k);
+    EXPECT_EQ(scans[k].ranges, expected.ranges) << "scan " << k << (late ? " (late)" : "");
+  }
+}
+
 TEST_F(FlightSimulatorTest, SameScenarioGivesBitIdenticalStreams) {
   FlightSimulator first(scenario_);
   FlightSimulator second(scenario_);
