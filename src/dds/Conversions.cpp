@@ -103,15 +103,26 @@ ImuSample from_msg(const msg::Imu& message) {
   return sample;
 }
 
+void set_linear_block(std::array<double, 36>& covariance, const Eigen::Matrix3d& block) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) covariance[static_cast<std::size_t>(6 * r + c)] = block(r, c);
+  }
+}
+
+Eigen::Matrix3d linear_block(const std::array<double, 36>& covariance) {
+  Eigen::Matrix3d block;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) block(r, c) = covariance[static_cast<std::size_t>(6 * r + c)];
+  }
+  return block;
+}
+
 msg::TwistWithCovarianceStamped to_msg(const VelocitySample& sample, std::uint64_t seq,
                                        const Source& source) {
   msg::TwistWithCovarianceStamped m;
   m.header(make_header(sample.stamp, seq, source));
   m.linear(to_msg(sample.velocity));
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c)
-      m.covariance()[static_cast<std::size_t>(6 * r + c)] = sample.covariance(r, c);
-  }
+  set_linear_block(m.covariance(), sample.covariance);
   return m;
 }
 
@@ -119,10 +130,7 @@ VelocitySample from_msg(const msg::TwistWithCovarianceStamped& message) {
   VelocitySample sample;
   sample.stamp = from_msg_time(message.header().stamp());
   sample.velocity = from_msg(message.linear());
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c)
-      sample.covariance(r, c) = message.covariance()[static_cast<std::size_t>(6 * r + c)];
-  }
+  sample.covariance = linear_block(message.covariance());
   return sample;
 }
 

@@ -1,6 +1,7 @@
 // Between the wire types (idl/, generated) and the core's types. The only place that knows both.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -35,6 +36,11 @@ Scan from_msg(const msg::LaserScan& message, std::shared_ptr<const ScanGeometry>
 
 msg::Imu to_msg(const ImuSample& sample, std::uint64_t seq, const Source& source);
 ImuSample from_msg(const msg::Imu& message);
+
+// The upper-left 3x3 block of a row-major 6x6 covariance (the linear part: position, velocity),
+// written into it and read from it.
+void set_linear_block(std::array<double, 36>& covariance, const Eigen::Matrix3d& block);
+Eigen::Matrix3d linear_block(const std::array<double, 36>& covariance);
 
 // The linear velocity and its covariance (the 6x6's upper-left block); the angular part zero.
 msg::TwistWithCovarianceStamped to_msg(const VelocitySample& sample, std::uint64_t seq,

@@ -18,10 +18,7 @@ msg::PoseWithCovarianceStamped pose_message(const ScanReport& report, const Slam
       to_msg(report.pose, pose_quality(report, config), scan_seq, seq, source);
   const Eigen::Matrix3d position = report.absolute_covariance();
   if (position.isZero()) return m;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c)
-      m.covariance()[static_cast<std::size_t>(6 * r + c)] = position(r, c);
-  }
+  set_linear_block(m.covariance(), position);
   const double attitude = config.imu.attitude_sigma * config.imu.attitude_sigma;
   m.covariance()[21] = attitude;  // roll
   m.covariance()[28] = attitude;  // pitch
