@@ -16,9 +16,8 @@ ScanGeometry ScanGeometry::planar(double angle_min, double angle_increment, int 
 }
 
 bool ScanGeometry::has_vertical_beams() const {
-  const double sin45 = std::sqrt(0.5);
   return std::any_of(directions.begin(), directions.end(),
-                     [&](const Vec3& d) { return std::abs((mount.linear() * d).z()) > sin45; });
+                     [&](const Vec3& d) { return is_vertical(mount.linear() * d); });
 }
 
 }  // namespace uavslam

@@ -3,12 +3,6 @@
 #include <cmath>
 
 namespace uavslam {
-namespace {
-
-const double kSin45 = std::sqrt(0.5);
-
-}  // namespace
-
 bool is_valid_range(float range, const ScanGeometry& geometry) {
   return std::isfinite(range) && range >= geometry.min_range && range <= geometry.max_range;
 }
@@ -31,7 +25,7 @@ ProjectedScan project_scan(const Scan& scan, const Eigen::Quaterniond& orientati
     }
     const Vec3 direction = sensor_to_world.linear() * geometry.directions[i];
     projected.points.push_back(sensor_to_world * (double(r) * geometry.directions[i]));
-    projected.vertical.push_back(std::abs(direction.z()) > kSin45);
+    projected.vertical.push_back(is_vertical(direction));
   }
   return projected;
 }

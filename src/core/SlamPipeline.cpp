@@ -93,8 +93,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   if (match.outcome != ScanOutcome::Accepted) return carried_by_prior(report, start, prior);
 
   // Beyond the seed: what the scan saw, and whether the match agrees with the motion prior there.
-  const Vec3 position =
-      keep_what_the_scan_saw(report, match, start, prior, scan.geometry->has_vertical_beams());
+  const Vec3 position = keep_what_the_scan_saw(report, match, start, prior, *scan.geometry);
   const std::optional<PriorDistance> distance =
       distance_from_prior(report, match, start, prediction, prior);
   if (distance && !report.relocalised) {
@@ -211,10 +210,10 @@ ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected) const {
 // to z (icp.split_axes): a planar scanner's z is not the scan's to see, nor degenerate.
 Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult& match,
                                           const Pose& start, const Eigen::Matrix3d& prior,
-                                          bool vertical_beams) {
+                                          const ScanGeometry& sensor) {
   if (config_.degeneracy.threshold <= 0.0) return match.position;
   const bool with_yaw = config_.icp.heading == HeadingMode::EveryScan || match.yaw != 0.0;
-  const bool measures_height = config_.icp.split_axes && vertical_beams;
+  const bool measures_height = config_.icp.split_axes && sensor.has_vertical_beams();
   report.seen = observability(
       scan_information(match.pairs, match.position, with_yaw, config_.degeneracy.min_sigma),
       config_.degeneracy.threshold, measures_height);

@@ -105,7 +105,7 @@ class SlamPipeline {
                                                    const MotionPrediction& prediction,
                                                    const Eigen::Matrix3d& prior) const;
   Vec3 keep_what_the_scan_saw(ScanReport& report, const MatchResult& match, const Pose& start,
-                              const Eigen::Matrix3d& prior, bool vertical_beams);
+                              const Eigen::Matrix3d& prior, const ScanGeometry& sensor);
 
   SlamConfig config_;
   ImuBuffer imu_;

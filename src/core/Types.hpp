@@ -2,6 +2,7 @@
 // Plain values only: the core knows nothing of DDS, files or clocks; stamps are seconds.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -64,10 +65,15 @@ struct ScanGeometry {
   // (the sensor_msgs/LaserScan convention).
   static ScanGeometry planar(double angle_min, double angle_increment, int beams);
 
-  // Some beams point more up or down than sideways on the body (a floor mirror, the rings of a 3D
-  // scanner): the sensor can measure height. A planar scanner's cannot.
+  // Some beams point more up or down than sideways on the body (is_vertical: a floor mirror, the
+  // rings of a 3D scanner): the sensor can measure height. A planar scanner's cannot.
   bool has_vertical_beams() const;
 };
+
+// A direction more up or down than sideways (over 45 degrees from the horizontal).
+inline bool is_vertical(const Vec3& direction) {
+  return std::abs(direction.z()) > std::sqrt(0.5);
+}
 
 // One sweep of the range sensor: a range per beam of its geometry (NaN/inf/out of range = no
 // return).
