@@ -25,22 +25,15 @@ Eigen::Quaterniond heading_drift_at(const ImuSpec& spec, const Trajectory& traje
 ImuSimulator::ImuSimulator(const ImuSpec& spec, std::uint64_t seed)
     : spec_(spec), random_(mix_seed(seed, kImuStream)) {}
 
-Vec3 ImuSimulator::standard_normal_vector() {
-  // Separate statements: the order of evaluation inside one expression is unspecified.
-  const double x = standard_normal_(random_);
-  const double y = standard_normal_(random_);
-  const double z = standard_normal_(random_);
-  return {x, y, z};
-}
-
 ImuSample ImuSimulator::sample_at(const Trajectory& trajectory, double t) {
   const Pose truth = trajectory.pose_at(t);
   // Heading drift turns the reported attitude about the world vertical.
   const Eigen::Quaterniond drift = heading_drift_at(spec_, trajectory, truth.stamp);
-  const Vec3 attitude_noise =
-      deg_to_rad(spec_.orientation_noise_std_deg) * standard_normal_vector();
-  const Vec3 gyro_noise = spec_.gyro_noise_std * standard_normal_vector();
-  const Vec3 accel_noise = spec_.accel_noise_std * standard_normal_vector();
+  const Vec3 attitude_noise = deg_to_rad(spec_.orientation_noise_std_deg) *
+                              standard_normal_vector(random_, standard_normal_);
+  const Vec3 gyro_noise = spec_.gyro_noise_std * standard_normal_vector(random_, standard_normal_);
+  const Vec3 accel_noise =
+      spec_.accel_noise_std * standard_normal_vector(random_, standard_normal_);
 
   ImuSample sample;
   sample.stamp = t;

@@ -24,8 +24,6 @@ class ImuSimulator {
   ImuSample sample_at(const Trajectory& trajectory, double t);
 
  private:
-  Vec3 standard_normal_vector();
-
   ImuSpec spec_;
   std::mt19937_64 random_;
   std::normal_distribution<double> standard_normal_{0.0, 1.0};

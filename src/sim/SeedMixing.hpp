@@ -1,8 +1,12 @@
-// Independent random streams from one scenario seed: each simulator mixes in its own constant, so
-// the LiDAR and the IMU never share (or shift) each other's random numbers.
+// Independent random streams from one scenario seed, and the noise drawn from them: each simulator
+// mixes in its own constant, so the LiDAR and the IMU never share (or shift) each other's random
+// numbers.
 #pragma once
 
 #include <cstdint>
+#include <random>
+
+#include "core/Types.hpp"
 
 namespace uavslam::sim {
 
@@ -16,6 +20,16 @@ constexpr std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);
+}
+
+// Three standard normals of one stream, drawn for x, y and z in that order (separate statements:
+// the order of evaluation inside one expression is unspecified).
+inline Vec3 standard_normal_vector(std::mt19937_64& random,
+                                   std::normal_distribution<double>& standard_normal) {
+  const double x = standard_normal(random);
+  const double y = standard_normal(random);
+  const double z = standard_normal(random);
+  return {x, y, z};
 }
 
 }  // namespace uavslam::sim

@@ -10,14 +10,10 @@ VelocitySimulator::VelocitySimulator(const VelocitySpec& spec, const ImuSpec& im
     : spec_(spec), imu_(imu), random_(mix_seed(seed, kVelocityStream)) {}
 
 VelocitySample VelocitySimulator::sample_at(const Trajectory& trajectory, double t) {
-  // Separate statements: the order of evaluation inside one expression is unspecified.
-  const double x = standard_normal_(random_);
-  const double y = standard_normal_(random_);
-  const double z = standard_normal_(random_);
+  const Vec3 noise = spec_.noise_std * standard_normal_vector(random_, standard_normal_);
   VelocitySample sample;
   sample.stamp = t;
-  sample.velocity = heading_drift_at(imu_, trajectory, t) * trajectory.velocity_at(t) +
-                    spec_.noise_std * Vec3(x, y, z);
+  sample.velocity = heading_drift_at(imu_, trajectory, t) * trajectory.velocity_at(t) + noise;
   sample.covariance = spec_.noise_std * spec_.noise_std * Eigen::Matrix3d::Identity();
   return sample;
 }
