@@ -100,7 +100,7 @@ sweep: programs
 	$(UAVSLAM) sweep --scenario config/scenarios/demo.yaml --config config/slam.yaml \
 	  --iterations 1,2,3,5,10,20 --checks exact,16,64
 
-# The Freiburg benchmark table of docs/real-logs.md (needs ../shared/data/freiburg; ~5 min).
+# The Freiburg benchmark table of docs/real-logs.md (needs ../shared/data/freiburg; ~15 min).
 real-logs: programs
 	bash test/bench/real_logs_table.sh --build-dir $(BUILD)
 

@@ -10,6 +10,8 @@ BUILD_PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
   # algorithm core
   libeigen3-dev libflann-dev liblz4-dev liboctomap-dev
+  # the pose-graph back end (src/backend): Ceres 2.1
+  libceres-dev
   # recording (MCAP CRC-32; lz4 and zstd chunk compression)
   zlib1g-dev libzstd-dev
   # DDS (Fast DDS 2.9, Fast CDR 1.0, fastddsgen 2.3, fastdds shm clean)
@@ -23,7 +25,7 @@ BUILD_PACKAGES=(
 # Only what the built processes link at run time, no dev packages (the image's runtime stage:
 # `install-deps.sh --runtime`; `ldd build/bin/*` lists them).
 RUNTIME_PACKAGES=(
-  libfastrtps2.9 libfastcdr1 liboctomap1.9 libyaml-cpp0.7 libpng16-16 liblz4-1 zlib1g libzstd1
+  libfastrtps2.9 libfastcdr1 liboctomap1.9 libyaml-cpp0.7 libpng16-16 liblz4-1 zlib1g libzstd1 libceres3
 )
 
 # The rest of `make test` and `make bench` on the host (never in the image).

@@ -37,6 +37,18 @@ class Pass {
   }
 
   void finish() {
+    // The back end's last word: the graph optimised once more, every posed scan moved with the
+    // keyframe it was made after, the map rebuilt on the keyframes.
+    if (slam_.finish()) {
+      for (std::size_t i = 0; i < result_.posed.size(); ++i) {
+        if (!anchors_[i]) continue;
+        const double stamp = result_.posed[i].pose.stamp;
+        result_.posed[i].pose = slam_.smoothed(result_.posed[i].pose, *anchors_[i]);
+        result_.posed[i].pose.stamp = stamp;
+      }
+    }
+    if (slam_.graph()) result_.loops = slam_.graph()->counts();
+    result_.backend_seconds = slam_.backend_seconds();
     result_.outcomes = slam_.pipeline().outcome_counts();
     result_.map = slam_.pipeline().map().points();
     result_.keyframes = slam_.keyframes();
@@ -55,6 +67,7 @@ class Pass {
       Pose pose = scan.report.pose;
       pose.stamp = event.output_stamp;
       result_.posed.push_back({event.output_stamp, pose, event.truth, scan.report.dead_reckoned});
+      anchors_.push_back(scan.anchor);
     }
     ++result_.scans_in;
     result_.dead_reckoned += scan.report.dead_reckoned;
@@ -63,6 +76,7 @@ class Pass {
 
   PassResult& result_;
   VehicleSlam slam_;
+  std::vector<std::optional<ScanAnchor>> anchors_;  // one per posed scan
 };
 
 }  // namespace

@@ -53,6 +53,8 @@ struct PassResult {
   bool stopped_early = false;
   std::string input_damage;                        // LogInput::damage(): the input was cut short
   std::optional<io::NoReturnCode> no_return_code;  // LogInput::no_return_code()
+  std::optional<backend::LoopCounts> loops;        // with the back end (loop_closure.enabled)
+  double backend_seconds = 0.0;                    // its share of wall_seconds
 
   double real_time_factor() const { return wall_seconds > 0 ? data_seconds / wall_seconds : 0; }
   double pipeline_seconds() const;  // the matcher's share of wall_seconds (sum of scan_ms)

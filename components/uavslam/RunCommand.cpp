@@ -55,6 +55,7 @@ nlohmann::json to_json(const PassResult& run, const std::string& log_path,
                 {"dead_reckoned", run.dead_reckoned}};
   j["tracking"] = cli::to_json(run.tracking);
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
+  if (run.loops) j["loops"] = cli::to_json(*run.loops, run.backend_seconds);
   j["matcher_ms_per_scan"] = {{"mean", ms.mean}, {"p50", ms.p50}, {"p99", ms.p99}, {"max", ms.max}};
   j["wall_seconds"] = run.pipeline_seconds();
   j["total_seconds"] = run.wall_seconds;
@@ -81,6 +82,7 @@ void print_summary(std::ostream& out, const PassResult& run, const std::string& 
   }
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
+  if (run.loops) print_loops(out, *run.loops, run.backend_seconds);
   out << std::fixed << std::setprecision(3) << "  matcher time      " << ms.mean
       << " ms/scan mean, p99 " << ms.p99 << " ms, max " << ms.max << " ms\n";
   const double pipeline = run.pipeline_seconds();

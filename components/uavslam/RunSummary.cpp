@@ -25,6 +25,9 @@ RunSummary summarize_run(const std::string& scenario, const SlamRun& run, double
   s.scan_ms = eval::summarize(ms);
   try {
     s.errors = eval::compare_trajectories(run.estimate, run.ground_truth);
+    if (!run.smoothed.empty()) {
+      s.smoothed_errors = eval::compare_trajectories(run.smoothed, run.ground_truth);
+    }
   } catch (const std::invalid_argument& e) {
     s.errors_unavailable = e.what();
   }
@@ -100,6 +103,23 @@ nlohmann::json to_json(const TrackingCounts& tracking) {
           {"by_reason", tracking.reasons}};
 }
 
+void print_loops(std::ostream& out, const backend::LoopCounts& loops, double seconds) {
+  out << "  loops             " << loops.accepted << " accepted of " << loops.searches
+      << " searched (rejected: " << loops.rejected_score << " score, " << loops.rejected_ambiguous
+      << " look-alike, " << loops.rejected_by_graph << " by the graph), " << loops.optimisations
+      << " optimisations, " << std::fixed << std::setprecision(2) << seconds << " s\n";
+}
+
+nlohmann::json to_json(const backend::LoopCounts& loops, double seconds) {
+  return {{"seconds", seconds},
+          {"searched", loops.searches},
+          {"accepted", loops.accepted},
+          {"rejected_score", loops.rejected_score},
+          {"rejected_look_alike", loops.rejected_ambiguous},
+          {"rejected_by_graph", loops.rejected_by_graph},
+          {"optimisations", loops.optimisations}};
+}
+
 void print_summary(std::ostream& out, const RunSummary& s) {
   const SlamRun& run = *s.run;
   out << "uavslam simulate: " << s.scenario << (run.stopped_early ? " (stopped early)" : "")
@@ -108,8 +128,14 @@ void print_summary(std::ostream& out, const RunSummary& s) {
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
   print_tracking(out, run.tracking);
+  if (run.loops) print_loops(out, *run.loops, run.backend_seconds);
   if (s.errors) {
     print_errors(out, *s.errors);
+    if (s.smoothed_errors) {
+      out << std::fixed << std::setprecision(4) << "  ATE after loops   "
+          << s.smoothed_errors->ate_rmse << " m (max " << s.smoothed_errors->ate_max
+          << " m): the poses where the back end's final graph puts them\n";
+    }
   } else {
     out << "  trajectory errors unavailable: " << s.errors_unavailable << "\n";
   }
@@ -173,6 +199,8 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
     j["match_vs_prior_sigmas"] = {{"p50", d.p50}, {"p99", d.p99}, {"max", d.max}};
   }
   j["trajectory_errors"] = s.errors ? to_json(*s.errors) : nlohmann::json(s.errors_unavailable);
+  if (s.smoothed_errors) j["trajectory_errors_after_loops"] = to_json(*s.smoothed_errors);
+  if (run.loops) j["loops"] = to_json(*run.loops, run.backend_seconds);
   j["matcher_ms_per_scan"] = {{"mean", s.scan_ms.mean},
                               {"p50", s.scan_ms.p50},
                               {"p99", s.scan_ms.p99},

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "SimulatedFlight.hpp"
+#include "backend/KeyframeGraph.hpp"
 #include "eval/Percentile.hpp"
 #include "eval/TrajectoryMetrics.hpp"
 
@@ -20,7 +21,9 @@ struct RunSummary {
   SlamRun const* run = nullptr;
   double flight_seconds = 0.0;
   std::optional<eval::TrajectoryErrors> errors;  // none when too few scans were accepted
-  std::string errors_unavailable;                // why, when errors is empty
+  // With the back end: of the same poses where its final graph puts them.
+  std::optional<eval::TrajectoryErrors> smoothed_errors;
+  std::string errors_unavailable;  // why, when errors is empty
   eval::SampleStats scan_ms;
 
   double real_time_factor() const;
@@ -41,6 +44,10 @@ std::size_t accepted_count(const OutcomeCounts& outcomes);
 // "  tracking          7100 tracking, 80 degraded (degenerate 80), 0 lost" and its JSON.
 void print_tracking(std::ostream& out, const TrackingCounts& tracking);
 nlohmann::json to_json(const TrackingCounts& tracking);
+// "  loops             12 accepted of 240 searched (rejected: 200 score, 20 look-alike, 8 by
+// the graph), 14 optimisations, 1.20 s" and its JSON: the back end's loop search and its time.
+void print_loops(std::ostream& out, const backend::LoopCounts& loops, double seconds);
+nlohmann::json to_json(const backend::LoopCounts& loops, double seconds);
 void print_summary(std::ostream& out, const RunSummary& summary);
 nlohmann::json to_json(const RunSummary& summary, const SlamConfig& config);
 nlohmann::json to_json(const eval::TrajectoryErrors& errors);

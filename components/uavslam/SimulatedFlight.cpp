@@ -103,6 +103,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
   slam.start_at(log.ground_truth.front().position);
   std::size_t next_imu = 0;
   std::size_t next_velocity = 0;
+  std::vector<std::optional<ScanAnchor>> anchors;  // one per accepted scan
   const auto run_start = Clock::now();
   for (std::size_t i = 0; i < log.scans.size(); ++i) {
     if (process::stop_requested()) {
@@ -127,6 +128,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
         eval::nees(report.pose.position - truth, report.absolute_covariance());
     if (report.accepted()) {
       run.estimate.push_back(report.pose);
+      anchors.push_back(result.anchor);
       run.ground_truth.push_back(log.ground_truth[i]);
       if (nees) run.nees.push_back(*nees);
       if (report.prior_distance > 0.0) run.prior_distances.push_back(report.prior_distance);
@@ -140,6 +142,14 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
                          result.tracking, nees});
     if (progress && i % 400 == 0) progress(i, log.scans.size());
   }
+  if (slam.finish()) {
+    for (std::size_t k = 0; k < run.estimate.size(); ++k) {
+      run.smoothed.push_back(anchors[k] ? slam.smoothed(run.estimate[k], *anchors[k])
+                                        : run.estimate[k]);
+    }
+  }
+  if (slam.graph()) run.loops = slam.graph()->counts();
+  run.backend_seconds = slam.backend_seconds();
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
   run.outcomes = slam.pipeline().outcome_counts();
   run.map = slam.pipeline().map().points();

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "backend/KeyframeGraph.hpp"
 #include "core/SlamPipeline.hpp"
 #include "eval/Consistency.hpp"
 #include "sim/Scenario.hpp"
@@ -57,8 +58,12 @@ struct ScanTrace {
 };
 
 struct SlamRun {
-  std::vector<ScanTrace> trace;      // every scan
-  std::vector<Pose> estimate;        // one pose per accepted scan
+  std::vector<ScanTrace> trace;  // every scan
+  std::vector<Pose> estimate;    // one pose per accepted scan, as the vehicle had it
+  // With the back end (loop_closure.enabled): the same poses where the final graph puts them.
+  std::vector<Pose> smoothed;
+  std::optional<backend::LoopCounts> loops;
+  double backend_seconds = 0.0;      // the back end's share of wall_seconds
   std::vector<Pose> ground_truth;    // the truth at the same stamps
   std::vector<double> scan_seconds;  // pipeline time of every scan
   std::array<std::size_t, kScanOutcomeCount> outcomes{};

@@ -187,6 +187,40 @@ struct SlamConfig {
     double attitude_sigma = 0.0175;  // roll and pitch: an autopilot's attitude, about 1 degree
     double heading_sigma = 0.035;    // yaw: about 2 degrees
   } imu;
+
+  // Beyond the seed: the pose-graph back end (src/backend/KeyframeGraph). Keyframes become the
+  // nodes of a graph, each new one is searched against older ones for a loop, and an accepted loop
+  // moves the keyframes and the map with them. Off: the seed's one ever-growing map.
+  struct LoopClosure {
+    bool enabled = false;
+    // How far two successive keyframes are known from each other (the front end's chain), 1 sigma:
+    double step_sigma = 0.01;                 // m, however short the step
+    double step_sigma_per_metre = 0.02;       // m per m between them
+    double step_yaw_sigma = 0.002;            // rad, however small the turn
+    double step_yaw_sigma_per_radian = 0.02;  // rad per rad turned
+    // How well a verified loop fixes the two keyframes, 1 sigma.
+    double loop_sigma = 0.05;      // m
+    double loop_yaw_sigma = 0.02;  // rad
+    // The search: keyframes this far back along the flight (m) are candidates ...
+    double min_travel = 10.0;
+    // ... within a window of 3 sigma of the chain between them, at least min_radius and
+    // at most max_radius (m) wide each way, and at most pi in yaw.
+    double min_radius = 1.0;
+    double max_radius = 8.0;
+    // A keyframe the graph already places within this of the newest (3 sigma) is not searched:
+    // the front end's matching holds about that much, twice its pairing gate (m; 0 = search
+    // every candidate).
+    double known_radius = 0.5;
+    int max_candidates = 2;    // searched per new keyframe, the nearest first
+    int submap_keyframes = 5;  // either side of a candidate: its neighbourhood is the reference
+    double resolution = 0.05;  // m, the correlative matcher's finest grid
+    // Verification: the share of the new keyframe's points on the candidate's surfaces ...
+    double min_score = 0.55;
+    // ... and by how much the best pose beats the best other one at least ambiguity_radius away
+    // (a corridor whose doors repeat has two).
+    double min_score_margin = 0.05;
+    double ambiguity_radius = 0.5;  // m
+  } loop_closure;
 };
 
 }  // namespace uavslam

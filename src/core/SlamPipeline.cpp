@@ -1,6 +1,8 @@
 #include "core/SlamPipeline.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "core/Heading.hpp"
 #include "core/extensions/PriorAgreement.hpp"
@@ -292,9 +294,32 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
   }
   map_uncertainty_.add_keyframe(map_.size(), report.absolute_covariance());
   report.added_points = map_.add_points(aligned, normals);
+  ++keyframes_;
   last_map_update_position_ = pose_.position;
   last_map_update_heading_ = heading_of(pose_.orientation);
   report.map_updated = true;
+}
+
+void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
+                               const Eigen::Isometry3d& correction, double yaw) {
+  if (keyframes.size() != keyframes_) {
+    throw std::invalid_argument("replace_map: " + std::to_string(keyframes.size()) +
+                                " keyframes for a map of " + std::to_string(keyframes_));
+  }
+  map_ = WorldMap(make_nearest_neighbour_index(config_.nearest_neighbour),
+                  config_.map.min_point_spacing);
+  std::vector<std::size_t> first_points;
+  for (const MapKeyframe& keyframe : keyframes) {
+    first_points.push_back(map_.size());
+    map_.add_points(keyframe.points, keyframe.normals);
+  }
+  map_uncertainty_.move_keyframes(first_points);
+  nearest_.clear();  // the warm start's indices were the old map's
+  heading_correction_ = std::remainder(heading_correction_ + yaw, 2.0 * M_PI);
+  pose_.position = correction * pose_.position;
+  pose_.orientation = yaw_rotation(yaw) * pose_.orientation;
+  last_map_update_position_ = correction * last_map_update_position_;
+  last_map_update_heading_ = std::remainder(last_map_update_heading_ + yaw, 2.0 * M_PI);
 }
 
 }  // namespace uavslam

@@ -61,6 +61,13 @@ struct ScanReport {
   }
 };
 
+// A keyframe's share of the map, for rebuilding it (replace_map): its points and, with the
+// point-to-line metric, their normals (else empty), world frame.
+struct MapKeyframe {
+  Points points;
+  std::vector<Vec3> normals;
+};
+
 class SlamPipeline {
  public:
   // initial_position: where the body is when the first scan arrives (e.g. the take-off point).
@@ -76,6 +83,13 @@ class SlamPipeline {
   // starts from the last position plus it (turned by the heading correction, if any). None (the
   // default) is the seed, which has no motion model.
   ScanReport process_scan(const Scan& scan, const MotionPrediction& prediction = {});
+
+  // Beyond the seed (the pose-graph back end, loop_closure): the map rebuilt from its keyframes,
+  // one per keyframe made so far and in that order, where an optimisation moved them; the vehicle
+  // moves with the newest one: `correction` takes the old map frame to the new, a turn of `yaw`
+  // rad about the vertical and a shift. Throws std::invalid_argument for another keyframe count.
+  void replace_map(const std::vector<MapKeyframe>& keyframes, const Eigen::Isometry3d& correction,
+                   double yaw);
 
   const WorldMap& map() const { return map_; }
   const Pose& pose() const { return pose_; }
@@ -123,6 +137,7 @@ class SlamPipeline {
   PriorGate gate_;
   MapUncertainty map_uncertainty_;
   Eigen::Matrix3d map_covariance_ = Eigen::Matrix3d::Zero();  // the last match's
+  std::size_t keyframes_ = 0;
 };
 
 }  // namespace uavslam

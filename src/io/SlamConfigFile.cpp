@@ -195,6 +195,72 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.imu.heading_sigma = v.as_double(NumberRange::positive());
        }},
+      {"loop_closure", "enabled",
+       [](SlamConfig& c, const YamlReader& v) { c.loop_closure.enabled = v.as_bool(); }},
+      {"loop_closure", "step_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.step_sigma = v.as_double(NumberRange::positive());
+       }},
+      {"loop_closure", "step_sigma_per_metre",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.step_sigma_per_metre = v.as_double(NumberRange::non_negative());
+       }},
+      {"loop_closure", "step_yaw_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.step_yaw_sigma = v.as_double(NumberRange::positive());
+       }},
+      {"loop_closure", "step_yaw_sigma_per_radian",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.step_yaw_sigma_per_radian = v.as_double(NumberRange::non_negative());
+       }},
+      {"loop_closure", "loop_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.loop_sigma = v.as_double(NumberRange::positive());
+       }},
+      {"loop_closure", "loop_yaw_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.loop_yaw_sigma = v.as_double(NumberRange::positive());
+       }},
+      {"loop_closure", "min_travel",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.min_travel = v.as_double(NumberRange::non_negative());
+       }},
+      {"loop_closure", "min_radius",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.min_radius = v.as_double(NumberRange::positive());
+       }},
+      {"loop_closure", "max_radius",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.max_radius = v.as_double(NumberRange::positive());
+       }},
+      {"loop_closure", "known_radius",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.known_radius = v.as_double(NumberRange::non_negative());
+       }},
+      {"loop_closure", "max_candidates",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.max_candidates = v.as_int(NumberRange::at_least(1));
+       }},
+      {"loop_closure", "submap_keyframes",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.submap_keyframes = v.as_int(NumberRange::non_negative());
+       }},
+      {"loop_closure", "resolution",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.resolution = v.as_double(NumberRange::positive());
+       }},
+      {"loop_closure", "min_score",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.min_score = v.as_double(NumberRange::between(0.0, 1.0));
+       }},
+      {"loop_closure", "min_score_margin",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.min_score_margin = v.as_double(NumberRange::non_negative());
+       }},
+      {"loop_closure", "ambiguity_radius",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.ambiguity_radius = v.as_double(NumberRange::positive());
+       }},
   };
   return table;
 }

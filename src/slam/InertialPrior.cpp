@@ -202,4 +202,16 @@ Vec3 InertialPrior::bias() const {
   return state_ ? Vec3(state_->x.segment<3>(6)) : Vec3::Zero();
 }
 
+void InertialPrior::reanchor(const Eigen::Isometry3d& correction) {
+  if (!state_) return;
+  const Eigen::Matrix3d R = correction.linear();
+  const Vec3 position = state_->x.segment<3>(0);
+  state_->x.segment<3>(0) = correction * position;
+  state_->x.segment<3>(3) = R * state_->x.segment<3>(3);
+  StateMatrix G = StateMatrix::Identity();
+  G.block<3, 3>(0, 0) = R;
+  G.block<3, 3>(3, 3) = R;
+  state_->P = G * state_->P * G.transpose();
+}
+
 }  // namespace uavslam

@@ -47,6 +47,10 @@ class InertialPrior {
   // The scan got a pose: the filter moves to it and, if the scan was matched, takes its position.
   void scan_posed(const ScanReport& report, double heading_correction);
 
+  // The map frame moved under the filter (the back end re-anchored the map on an optimised pose
+  // graph): the position and velocity move with it; the bias is the body's and stays.
+  void reanchor(const Eigen::Isometry3d& correction);
+
   std::size_t scans_with_prior() const { return with_prior_; }
   std::size_t scans_without_prior() const { return without_prior_; }
   std::size_t rejected() const { return rejected_; }

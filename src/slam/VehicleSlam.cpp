@@ -2,10 +2,15 @@
 
 #include <chrono>
 
+#include "core/Heading.hpp"
 #include "core/ScanProjection.hpp"
 
 namespace uavslam {
 namespace {
+
+backend::NodePose node_of(const Pose& pose) {
+  return {pose.position, heading_of(pose.orientation)};
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -25,6 +30,7 @@ VehicleSlam::VehicleSlam(const SlamConfig& config, const DenseProducts& products
     inertial_.emplace(config.motion, config.imu.max_gap);
   if (products.cloud_voxel) cloud_ = std::make_unique<DenseCloud>(*products.cloud_voxel);
   if (products.occupancy) occupancy_ = std::make_unique<OccupancyOctree>(*products.occupancy);
+  if (config.loop_closure.enabled) graph_.emplace(config.loop_closure);
 }
 
 void VehicleSlam::add_imu(const ImuSample& sample) {
@@ -60,6 +66,18 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
   if (result.posed()) scan_posed(result.report);
   result.pipeline_seconds = seconds_since(started);
   result.tracking = tracking_.judge(scan, result.report, skipped_before);
+  if (graph_ && result.report.map_updated) {
+    const auto graph_started = Clock::now();
+    result.map_corrected = add_to_graph(result.report);
+    backend_seconds_ += seconds_since(graph_started);
+  }
+  if (graph_ && result.posed()) {
+    const std::size_t newest = graph_->size() - 1;
+    backend::Constraint offset;  // the keyframe scan itself: none
+    if (!result.report.map_updated)
+      offset = backend::relative(graph_->pose(newest), node_of(result.report.pose));
+    result.anchor = ScanAnchor{newest, offset};
+  }
   if (result.report.map_updated) result.keyframe = keyframe_of(scan, result.report);
   if (result.posed()) add_dense(scan, result.report, result.keyframe ? &*result.keyframe : nullptr);
   return result;
@@ -90,6 +108,49 @@ void VehicleSlam::add_dense(const Scan& scan, const ScanReport& report, const Ke
   for (Vec3& p : points) p += report.pose.position;
   occupancy_->insert_keyframe(points, keyframe->sensor_origin);
   occupancy_seconds_ += seconds_since(started);
+}
+
+// The keyframe, with the points (and normals) it added to the map, into the graph; a loop that
+// moved the graph moves the map.
+bool VehicleSlam::add_to_graph(const ScanReport& report) {
+  const WorldMap& map = pipeline_.map();
+  const std::size_t first = map.size() - report.added_points.size();
+  std::vector<Vec3> normals;
+  if (!map.normals().empty()) {
+    normals.assign(map.normals().begin() + static_cast<std::ptrdiff_t>(first), map.normals().end());
+  }
+  const std::optional<backend::MapCorrection> moved =
+      graph_->add(node_of(report.pose), report.added_points, normals);
+  if (!moved) return false;
+  apply(*moved);
+  return true;
+}
+
+void VehicleSlam::apply(const backend::MapCorrection& correction) {
+  std::vector<MapKeyframe> keyframes(graph_->size());
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
+    keyframes[k].points = graph_->points_in_world(k);
+    keyframes[k].normals = graph_->normals_in_world(k);
+  }
+  pipeline_.replace_map(keyframes, correction.transform, correction.yaw);
+  if (inertial_) inertial_->reanchor(correction.transform);
+}
+
+bool VehicleSlam::finish() {
+  if (!graph_ || graph_->size() == 0) return false;
+  const auto started = Clock::now();
+  apply(*graph_->optimise());
+  backend_seconds_ += seconds_since(started);
+  return true;
+}
+
+Pose VehicleSlam::smoothed(const Pose& pose, const ScanAnchor& anchor) const {
+  if (!graph_ || anchor.keyframe >= graph_->size()) return pose;
+  const backend::NodePose now = backend::compose(graph_->pose(anchor.keyframe), anchor.offset);
+  Pose moved = pose;
+  moved.position = now.position;
+  moved.orientation = yaw_rotation(now.yaw - heading_of(pose.orientation)) * pose.orientation;
+  return moved;
 }
 
 }  // namespace uavslam

@@ -7,8 +7,10 @@
 //   - the sensor's mount: where the scanner was when a keyframe was taken, the rays' origin;
 //   - the keyframe products: what each keyframe adds to the map, and, for the offline variant,
 //     the dense cloud of every posed scan and the occupancy octree of the keyframes;
-//   - the tracking state: tracking, degraded or lost, and why (TrackingMonitor).
-// The pose-graph back end plugs in here.
+//   - the tracking state: tracking, degraded or lost, and why (TrackingMonitor);
+//   - the pose-graph back end (loop_closure.enabled, backend/KeyframeGraph): every keyframe into
+//     the graph; when a loop moves the keyframes, the pipeline's map is rebuilt on them and the
+//     motion prior moves with it.
 #pragma once
 
 #include <cstddef>
@@ -16,6 +18,7 @@
 #include <memory>
 #include <optional>
 
+#include "backend/KeyframeGraph.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/SlamPipeline.hpp"
 #include "maps/DenseCloud.hpp"
@@ -41,11 +44,20 @@ struct Keyframe {
   Points points;                      // the aligned points it added to the world map
 };
 
+// Where a posed scan was relative to the newest keyframe when it was made: the back end moves the
+// scan with that keyframe (VehicleSlam::smoothed).
+struct ScanAnchor {
+  std::size_t keyframe = 0;
+  backend::Constraint offset;  // the scan's pose seen from the keyframe's
+};
+
 struct VehicleScan {
   ScanReport report;  // its added_points are moved into keyframe
   std::optional<Keyframe> keyframe;
-  double pipeline_seconds = 0.0;  // the matching alone (motion prior and pipeline)
-  TrackingStatus tracking;        // tracking, degraded or lost, and why
+  double pipeline_seconds = 0.0;     // the matching alone (motion prior and pipeline)
+  TrackingStatus tracking;           // tracking, degraded or lost, and why
+  std::optional<ScanAnchor> anchor;  // with the back end, for a posed scan
+  bool map_corrected = false;        // the back end moved the keyframes and rebuilt the map
 
   // The scan got a pose: matched, or (rejected with a motion prior) dead-reckoned.
   bool posed() const { return report.accepted() || report.dead_reckoned; }
@@ -81,12 +93,21 @@ class VehicleSlam {
   const InertialPrior* inertial_prior() const { return inertial_ ? &*inertial_ : nullptr; }
   std::size_t keyframes() const { return keyframes_; }
 
+  // The back end (null unless loop_closure.enabled).
+  const backend::KeyframeGraph* graph() const { return graph_ ? &*graph_ : nullptr; }
+  // The end of a run: the graph optimised once more and the map rebuilt on it. False without a
+  // back end or when nothing moved.
+  bool finish();
+  // A posed scan's pose where the graph now puts its keyframe (unchanged without a back end).
+  Pose smoothed(const Pose& pose, const ScanAnchor& anchor) const;
+
   // The dense products (null when not asked for), and the seconds spent building them.
   const DenseCloud* cloud() const { return cloud_.get(); }
   const OccupancyOctree* occupancy() const { return occupancy_.get(); }
   std::unique_ptr<DenseCloud> take_cloud() { return std::move(cloud_); }
   std::unique_ptr<OccupancyOctree> take_occupancy() { return std::move(occupancy_); }
   double cloud_seconds() const { return cloud_seconds_; }
+  double backend_seconds() const { return backend_seconds_; }  // the graph: loops, optimising
   double occupancy_seconds() const { return occupancy_seconds_; }
 
  private:
@@ -94,6 +115,8 @@ class VehicleSlam {
   void scan_posed(const ScanReport& report);
   Keyframe keyframe_of(const Scan& scan, ScanReport& report);
   void add_dense(const Scan& scan, const ScanReport& report, const Keyframe* keyframe);
+  bool add_to_graph(const ScanReport& report);
+  void apply(const backend::MapCorrection& correction);
 
   SlamPipeline pipeline_;
   std::optional<OdometryPrior> odometry_;
@@ -101,8 +124,10 @@ class VehicleSlam {
   TrackingMonitor tracking_;
   std::unique_ptr<DenseCloud> cloud_;
   std::unique_ptr<OccupancyOctree> occupancy_;
+  std::optional<backend::KeyframeGraph> graph_;
   std::size_t keyframes_ = 0;
   double cloud_seconds_ = 0.0;
+  double backend_seconds_ = 0.0;
   double occupancy_seconds_ = 0.0;
 };
 

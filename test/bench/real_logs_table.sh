@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The Freiburg benchmark table of docs/real-logs.md: the three heading modes on both logs, each
-# run once as it is and then under tiny heading perturbations (--heading-jitter), so a figure comes
-# with its spread (the data README: matchers on these logs can be chaotic).
+# The Freiburg benchmark table of docs/real-logs.md: the heading modes and the back end on the
+# three logs, each run once as it is and then under tiny heading perturbations (--heading-jitter),
+# so a figure comes with its spread (the data README: matchers on these logs can be chaotic).
 #
 #   test/bench/real_logs_table.sh [--build-dir DIR] [--data DIR] [--jitter-runs N] [--out DIR]
 #
@@ -11,10 +11,12 @@
 #   --out DIR          keep every run's outputs here (default: a temporary folder)
 #
 # Mode rows (one config, config/slam_2d_logs.yaml, with the heading key overridden):
-#   seed      icp.heading=source, icp.metric=point_to_point: the seed's translation-only ICP with
-#             the odometry heading (and the odometry prior)
-#   periodic  icp.heading=periodic_check: yaw checked every icp.heading_check_every scans
-#   full      the config as shipped: yaw in every scan, point-to-line
+#   seed      icp.heading=source, icp.metric=point_to_point, no loop closure: the seed's
+#             translation-only ICP with the odometry heading (and the odometry prior)
+#   periodic  icp.heading=periodic_check, no loop closure: yaw checked every
+#             icp.heading_check_every scans
+#   no_loops  yaw in every scan, point-to-line, loop_closure.enabled=false: the front end alone
+#   full      the config as shipped: the front end and the pose-graph back end
 # Then the floor: each relation's two scans aligned to each other from the relation.
 set -euo pipefail
 
@@ -35,7 +37,7 @@ while [[ $# -gt 0 ]]; do
 done
 uavslam="${build_dir}/bin/uavslam"
 [[ -x "${uavslam}" ]] || { echo "real_logs_table.sh: ${uavslam} not built (make build)" >&2; exit 2; }
-for log in intel fr079; do
+for log in intel fr079 aces; do
   [[ -f "${data_dir}/${log}.clf" ]] || { echo "real_logs_table.sh: ${data_dir}/${log}.clf missing" >&2; exit 2; }
 done
 if [[ -z "${out_dir}" ]]; then
@@ -46,12 +48,13 @@ mkdir -p "${out_dir}"
 config="${repo_dir}/config/slam_2d_logs.yaml"
 
 declare -A mode_sets=(
-  [seed]="--set icp.heading=source --set icp.metric=point_to_point"
-  [periodic]="--set icp.heading=periodic_check"
+  [seed]="--set icp.heading=source --set icp.metric=point_to_point --set loop_closure.enabled=false"
+  [periodic]="--set icp.heading=periodic_check --set loop_closure.enabled=false"
+  [no_loops]="--set loop_closure.enabled=false"
   [full]=""
 )
 
-# One run: prints "all_m all_deg short_m short_deg wall_s".
+# One run: prints "all_m all_deg short_m short_deg front_s back_s loops searched".
 run_once() {
   local log="$1" mode="$2" seed="$3"
   local dir="${out_dir}/${log}_${mode}_${seed}"
@@ -65,18 +68,19 @@ run_once() {
   python3 - "${dir}/eval.json" "${dir}/summary.json" <<'EOF'
 import json, sys
 e = json.load(open(sys.argv[1])); s = json.load(open(sys.argv[2]))
+loops = s.get("loops", {})
 print(e["all"]["translation_m"]["mean"], e["all"]["rotation_deg"]["mean"],
       e["short_span"]["translation_m"]["mean"], e["short_span"]["rotation_deg"]["mean"],
-      s["wall_seconds"])
+      s["wall_seconds"], loops.get("seconds", 0), loops.get("accepted", 0), loops.get("searched", 0))
 EOF
 }
 
-echo "| mode | log | all relations (m, deg) | all, ${jitter_runs} perturbed runs: median [min, max] m | under 5 s (m, deg) | under 5 s perturbed: median [min, max] m | wall time |"
-echo "|---|---|---|---|---|---|---|"
-for mode in seed periodic full; do
-  for log in intel fr079; do
+echo "| mode | log | all relations (m, deg) | all, ${jitter_runs} perturbed runs: median [min, max] m | under 5 s (m, deg) | under 5 s perturbed: median [min, max] m | loops accepted / searched | front end, back end time |"
+echo "|---|---|---|---|---|---|---|---|"
+for mode in seed periodic no_loops full; do
+  for log in intel fr079 aces; do
     echo "running ${mode} on ${log} ..." >&2
-    read -r all_m all_deg short_m short_deg wall < <(run_once "${log}" "${mode}" 0)
+    read -r all_m all_deg short_m short_deg front back loops searched < <(run_once "${log}" "${mode}" 0)
     perturbed=()
     for seed in $(seq 1 "${jitter_runs}"); do perturbed+=("$(run_once "${log}" "${mode}" "${seed}")"); done
     printf '%s\n' "${perturbed[@]}" | python3 -c '
@@ -84,9 +88,10 @@ import sys
 rows = [list(map(float, l.split())) for l in sys.stdin if l.strip()]
 def spread(k):
     v = sorted(r[k] for r in rows)
-    return "%.3f [%.3f, %.3f]" % (v[len(v) // 2], v[0], v[-1])
-print("|%s|%s|%.3f, %.2f|%s|%.4f, %.2f|%s|%.1f s|" % ("'"${mode}"'", "'"${log}"'", '"${all_m}"', '"${all_deg}"',
-      spread(0), '"${short_m}"', '"${short_deg}"', spread(2), '"${wall}"'))'
+    return "%.4f [%.4f, %.4f]" % (v[len(v) // 2], v[0], v[-1])
+print("|%s|%s|%.4f, %.2f|%s|%.4f, %.2f|%s|%d / %d|%.1f s, %.1f s|" % ("'"${mode}"'", "'"${log}"'",
+      '"${all_m}"', '"${all_deg}"', spread(0), '"${short_m}"', '"${short_deg}"', spread(2),
+      '"${loops}"', '"${searched}"', '"${front}"', '"${back}"'))'
   done
 done
 
@@ -95,7 +100,7 @@ done
 echo
 echo "| each relation's two scans aligned from the relation (eval --scans) | all relations (m, deg) | under 5 s (m, deg) |"
 echo "|---|---|---|"
-for log in intel fr079; do
+for log in intel fr079 aces; do
   "${uavslam}" eval --relations "${data_dir}/${log}.relations" --scans "${data_dir}/${log}.clf" \
     --config "${config}" --json > "${out_dir}/${log}_scan_pairs.json"
   python3 - "${out_dir}/${log}_scan_pairs.json" "${log}" <<'EOF2'

@@ -188,6 +188,21 @@ TEST_F(UavslamCli, TheShippedConfigCorrectsTheImusYawDrift) {
   EXPECT_GT(trusted, 0.3);
 }
 
+// The same drifting IMU with the back end on: the flight comes back through the rooms it mapped,
+// the loops found there are optimised into the keyframe graph, and the map and the pose move with
+// it. Both what the vehicle flew on and the final graph's poses beat the front end alone.
+TEST_F(UavslamCli, TheBackEndClosesTheLoopsOfAFlightWhoseImuDrifts) {
+  const nlohmann::json alone = simulate(dir / "alone", "yaw_drift", "config/slam.yaml");
+  const nlohmann::json closed =
+      simulate(dir / "closed", "yaw_drift", "config/slam.yaml", "--set loop_closure.enabled=true");
+  EXPECT_GT(closed.at("loops").at("accepted").get<int>(), 10);
+  EXPECT_EQ(closed.at("loops").at("rejected_by_graph").get<int>(), 0);
+  EXPECT_FALSE(alone.contains("loops"));
+  const double after = closed.at("trajectory_errors_after_loops").at("ate_rmse_m").get<double>();
+  EXPECT_LT(ate_horizontal(closed), ate_horizontal(alone));
+  EXPECT_LT(after, 0.6 * alone.at("trajectory_errors").at("ate_rmse_m").get<double>());
+}
+
 // --seed: the same flight with other sensor noise (Monte Carlo runs); the same seed, the same run.
 TEST_F(UavslamCli, TheSeedOptionRepeatsAFlightWithOtherNoise) {
   const auto estimate = [&](const std::string& seed, const std::string& name) {
@@ -493,6 +508,27 @@ TEST_F(UavslamCli, RunCoversTheFr079Log) {
   EXPECT_LT(figures["all"]["translation_m"]["mean"].get<double>(), 0.5);
   EXPECT_LT(figures["short_span"]["translation_m"]["mean"].get<double>(), 0.04);
   EXPECT_LT(figures["short_span"]["rotation_deg"]["mean"].get<double>(), 1.0);
+}
+
+// ACES, a building the front end was not developed on: its long corridors drift, and the shipped
+// 2D-logs configuration closes the loops (the back end): all relations 0.122 m without it.
+TEST_F(UavslamCli, RunClosesTheLoopsOfTheAcesLog) {
+  const fs::path data = fs::path(UAVSLAM_SOURCE_DIR) / ".." / "shared" / "data" / "freiburg";
+  if (!fs::exists(data / "aces.clf")) GTEST_SKIP() << "no Freiburg data at " << data;
+  const fs::path out = dir / "aces";
+  const CommandResult r = run("run --quiet --carmen " + (data / "aces.clf").string() + " --out " +
+                              out.string() + " --config " + source("config/slam_2d_logs.yaml"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("  loops             "));
+  std::ifstream json(out / "summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(json);
+  EXPECT_GT(summary["loops"]["accepted"].get<int>(), 5);
+  const CommandResult e = run("eval --json --relations " + (data / "aces.relations").string() +
+                              " --estimate " + (out / "estimate.txt").string());
+  ASSERT_EQ(e.exit_code, 0) << e.output;
+  const nlohmann::json figures = nlohmann::json::parse(e.output);
+  EXPECT_EQ(figures["all"]["unmatched"].get<int>(), 0);
+  EXPECT_LT(figures["all"]["translation_m"]["mean"].get<double>(), 0.06);
 }
 
 // The scans' own alignment on both Freiburg logs: every relation names scans the log has (the

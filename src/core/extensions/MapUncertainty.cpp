@@ -3,6 +3,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <map>
+#include <stdexcept>
+#include <string>
 
 #include "core/extensions/ScanInformation.hpp"
 
@@ -32,6 +34,14 @@ Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d& information) {
 void MapUncertainty::add_keyframe(std::size_t first_point, const Eigen::Matrix3d& covariance) {
   first_points_.push_back(first_point);
   roots_.push_back(square_root(covariance));
+}
+
+void MapUncertainty::move_keyframes(const std::vector<std::size_t>& first_points) {
+  if (first_points.size() != first_points_.size()) {
+    throw std::invalid_argument("MapUncertainty: " + std::to_string(first_points.size()) +
+                                " keyframes moved of " + std::to_string(first_points_.size()));
+  }
+  first_points_ = first_points;
 }
 
 // The last keyframe that starts at or before the point (a keyframe that added nothing shares its

@@ -28,6 +28,10 @@ class MapUncertainty {
   // The keyframe whose points start at map index first_point, and its pose's covariance (m^2).
   void add_keyframe(std::size_t first_point, const Eigen::Matrix3d& covariance);
 
+  // The same keyframes, in the same order, now starting at these map indices (the map was
+  // rebuilt); throws std::invalid_argument for another count.
+  void move_keyframes(const std::vector<std::size_t>& first_points);
+
   // Sigma_map above for the pairs (their map_index, and the information pair_information gives
   // them); zero when no pair holds information.
   Eigen::Matrix3d of_match(const Correspondences& pairs) const;

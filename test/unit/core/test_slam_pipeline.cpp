@@ -1,5 +1,6 @@
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -214,6 +215,46 @@ TEST_F(HeadingBias, APeriodicCheckCorrectsTheHeadingOnlyWhenItIsDue) {
   EXPECT_EQ(run.corrections[10], run.corrections[9]);
   EXPECT_LT(run.last_heading_error, 0.002);
   EXPECT_LT(run.last_position_error, 0.01);
+}
+
+// The back end moved the map (a turn and a shift of the whole frame, as an optimised pose graph
+// does about the newest keyframe): the pipeline's map is the moved one, the vehicle moves with
+// it, and the next scans, turned by the same heading, are matched in the moved frame just as an
+// unmoved pipeline matches them in the old one.
+TEST_F(PipelineInRoom, AReplacedMapMovesTheVehicleAndTheHeadingWithIt) {
+  config.nearest_neighbour.index = IndexKind::Exact;
+  SlamPipeline slam(config, start);
+  SlamPipeline unmoved(config, start);
+  for (SlamPipeline* p : {&slam, &unmoved}) {
+    p->add_imu(level_imu(0.0));
+    ASSERT_TRUE(p->process_scan(room.scan_at(pose_at(start, 0.0), 0.0)).map_updated);
+  }
+
+  Eigen::Isometry3d moved = Eigen::Isometry3d::Identity();
+  moved.linear() = Eigen::AngleAxisd(0.05, Vec3::UnitZ()).toRotationMatrix();
+  moved.translation() = Vec3(0.3, -0.2, 0.0);
+  MapKeyframe keyframe;
+  for (const Vec3& p : slam.map().points()) keyframe.points.push_back(moved * p);
+  EXPECT_THROW(slam.replace_map({keyframe, keyframe}, moved, 0.05), std::invalid_argument);
+  slam.replace_map({keyframe}, moved, 0.05);
+
+  EXPECT_NEAR((slam.pose().position - moved * start).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(slam.heading_correction(), 0.05, 1e-12);
+  ASSERT_EQ(slam.map().size(), keyframe.points.size());
+  EXPECT_NEAR((slam.map().point(7) - keyframe.points[7]).norm(), 0.0, 1e-12);
+  for (int k = 1; k <= 40; ++k) {
+    const double t = k / 40.0;
+    const Vec3 truth = start + Vec3(0.02 * k, 0.01 * k, 0.0);
+    ScanReport r[2];
+    int i = 0;
+    for (SlamPipeline* p : {&slam, &unmoved}) {
+      p->add_imu(level_imu(t));
+      r[i++] = p->process_scan(room.scan_at(pose_at(truth, t), t));
+    }
+    ASSERT_TRUE(r[0].accepted()) << k;
+    EXPECT_EQ(r[0].map_updated, r[1].map_updated) << k;
+    EXPECT_LT((r[0].pose.position - moved * r[1].pose.position).norm(), 0.002) << k;
+  }
 }
 
 // A failed match with a motion prior leaves the vehicle where the prediction says, not where it

@@ -323,6 +323,24 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.motion.odometry_noise_per_metre, defaults.motion.odometry_noise_per_metre);
   EXPECT_EQ(config.motion.odometry_noise_floor, defaults.motion.odometry_noise_floor);
   EXPECT_EQ(config.motion.fuse_velocity, defaults.motion.fuse_velocity);
+  EXPECT_EQ(config.loop_closure.enabled, defaults.loop_closure.enabled);
+  EXPECT_EQ(config.loop_closure.step_sigma, defaults.loop_closure.step_sigma);
+  EXPECT_EQ(config.loop_closure.step_sigma_per_metre, defaults.loop_closure.step_sigma_per_metre);
+  EXPECT_EQ(config.loop_closure.step_yaw_sigma, defaults.loop_closure.step_yaw_sigma);
+  EXPECT_EQ(config.loop_closure.step_yaw_sigma_per_radian,
+            defaults.loop_closure.step_yaw_sigma_per_radian);
+  EXPECT_EQ(config.loop_closure.loop_sigma, defaults.loop_closure.loop_sigma);
+  EXPECT_EQ(config.loop_closure.loop_yaw_sigma, defaults.loop_closure.loop_yaw_sigma);
+  EXPECT_EQ(config.loop_closure.min_travel, defaults.loop_closure.min_travel);
+  EXPECT_EQ(config.loop_closure.min_radius, defaults.loop_closure.min_radius);
+  EXPECT_EQ(config.loop_closure.max_radius, defaults.loop_closure.max_radius);
+  EXPECT_EQ(config.loop_closure.known_radius, defaults.loop_closure.known_radius);
+  EXPECT_EQ(config.loop_closure.max_candidates, defaults.loop_closure.max_candidates);
+  EXPECT_EQ(config.loop_closure.submap_keyframes, defaults.loop_closure.submap_keyframes);
+  EXPECT_EQ(config.loop_closure.resolution, defaults.loop_closure.resolution);
+  EXPECT_EQ(config.loop_closure.min_score, defaults.loop_closure.min_score);
+  EXPECT_EQ(config.loop_closure.min_score_margin, defaults.loop_closure.min_score_margin);
+  EXPECT_EQ(config.loop_closure.ambiguity_radius, defaults.loop_closure.ambiguity_radius);
 }
 
 TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
@@ -384,6 +402,24 @@ motion:
   odometry_noise_per_metre: 0.05
   odometry_noise_floor: 0.003
   fuse_velocity: true
+loop_closure:
+  enabled: true
+  step_sigma: 0.02
+  step_sigma_per_metre: 0.03
+  step_yaw_sigma: 0.004
+  step_yaw_sigma_per_radian: 0.05
+  loop_sigma: 0.1
+  loop_yaw_sigma: 0.03
+  min_travel: 5
+  min_radius: 0.5
+  max_radius: 4
+  known_radius: 0.3
+  max_candidates: 3
+  submap_keyframes: 2
+  resolution: 0.1
+  min_score: 0.6
+  min_score_margin: 0.1
+  ambiguity_radius: 0.7
 )");
   const SlamConfig c = load_slam_config(path);
   EXPECT_EQ(c.degeneracy.threshold, 0.04);
@@ -395,6 +431,23 @@ motion:
   EXPECT_EQ(c.motion.odometry_noise_per_metre, 0.05);
   EXPECT_EQ(c.motion.odometry_noise_floor, 0.003);
   EXPECT_TRUE(c.motion.fuse_velocity);
+  EXPECT_TRUE(c.loop_closure.enabled);
+  EXPECT_EQ(c.loop_closure.step_sigma, 0.02);
+  EXPECT_EQ(c.loop_closure.step_sigma_per_metre, 0.03);
+  EXPECT_EQ(c.loop_closure.step_yaw_sigma, 0.004);
+  EXPECT_EQ(c.loop_closure.step_yaw_sigma_per_radian, 0.05);
+  EXPECT_EQ(c.loop_closure.loop_sigma, 0.1);
+  EXPECT_EQ(c.loop_closure.loop_yaw_sigma, 0.03);
+  EXPECT_EQ(c.loop_closure.min_travel, 5.0);
+  EXPECT_EQ(c.loop_closure.min_radius, 0.5);
+  EXPECT_EQ(c.loop_closure.max_radius, 4.0);
+  EXPECT_EQ(c.loop_closure.known_radius, 0.3);
+  EXPECT_EQ(c.loop_closure.max_candidates, 3);
+  EXPECT_EQ(c.loop_closure.submap_keyframes, 2);
+  EXPECT_EQ(c.loop_closure.resolution, 0.1);
+  EXPECT_EQ(c.loop_closure.min_score, 0.6);
+  EXPECT_EQ(c.loop_closure.min_score_margin, 0.1);
+  EXPECT_EQ(c.loop_closure.ambiguity_radius, 0.7);
   EXPECT_EQ(c.scan.subsample_every, 1);
   EXPECT_EQ(c.icp.iterations, 20);
   EXPECT_EQ(c.icp.max_translation, 0.5);
