@@ -63,7 +63,9 @@ class MatcherNode {
         sensor_(o.geometry_from_scan ? io::SensorFile{} : io::load_sensor(o.sensor)),
         geometries_(o.geometry_from_scan ? dds::MessageScanGeometry()
                                          : dds::MessageScanGeometry(sensor_.sensor.lidar)),
-        slam_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config)),
+        // The back end on its own thread: the scan's path never waits for a loop search.
+        slam_(o.slam_config.empty() ? SlamConfig{} : io::load_slam_config(o.slam_config), {},
+              BackendThreading::Thread),
         queue_(uses_odometry(), o.max_scan_backlog_s),
         max_scan_backlog_s_(o.max_scan_backlog_s),
         participant_(node.domain, process::profiles_path(node), node.participant_profile,
@@ -203,6 +205,9 @@ class MatcherNode {
                 << " dropped (non-finite or out of order), " << prior->scans_with_prior()
                 << " scans matched with the prior, " << prior->scans_without_prior()
                 << " without (no odometry near the scan or the last posed scan)\n";
+    }
+    if (const std::optional<backend::LoopCounts> loops = slam_.loops()) {
+      std::cerr << "slam_matcher: loops: " << backend::describe(*loops) << "\n";
     }
     if (velocity_) {
       std::cerr << "slam_matcher: velocity: " << queue_.velocity_received() << " samples received, "

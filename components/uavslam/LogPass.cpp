@@ -47,7 +47,7 @@ class Pass {
         result_.posed[i].pose.stamp = stamp;
       }
     }
-    if (slam_.graph()) result_.loops = slam_.graph()->counts();
+    result_.loops = slam_.loops();
     result_.backend_seconds = slam_.backend_seconds();
     result_.outcomes = slam_.pipeline().outcome_counts();
     result_.map = slam_.pipeline().map().points();

@@ -104,10 +104,8 @@ nlohmann::json to_json(const TrackingCounts& tracking) {
 }
 
 void print_loops(std::ostream& out, const backend::LoopCounts& loops, double seconds) {
-  out << "  loops             " << loops.accepted << " accepted of " << loops.searches
-      << " searched (rejected: " << loops.rejected_score << " score, " << loops.rejected_ambiguous
-      << " look-alike, " << loops.rejected_by_graph << " by the graph), " << loops.optimisations
-      << " optimisations, " << std::fixed << std::setprecision(2) << seconds << " s\n";
+  out << "  loops             " << backend::describe(loops) << ", " << std::fixed
+      << std::setprecision(2) << seconds << " s\n";
 }
 
 nlohmann::json to_json(const backend::LoopCounts& loops, double seconds) {

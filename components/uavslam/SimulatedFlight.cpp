@@ -148,7 +148,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
                                         : run.estimate[k]);
     }
   }
-  if (slam.graph()) run.loops = slam.graph()->counts();
+  run.loops = slam.loops();
   run.backend_seconds = slam.backend_seconds();
   run.wall_seconds = std::chrono::duration<double>(Clock::now() - run_start).count();
   run.outcomes = slam.pipeline().outcome_counts();

@@ -5,6 +5,7 @@
 #include <limits>
 #include <queue>
 #include <set>
+#include <string>
 #include <utility>
 
 #include "backend/CorrelativeMatcher.hpp"
@@ -64,6 +65,22 @@ MapCorrection correction_between(const NodePose& before, const NodePose& after) 
 }
 
 }  // namespace
+
+std::string describe(const LoopCounts& loops) {
+  return std::to_string(loops.accepted) + " accepted of " + std::to_string(loops.searches) +
+         " searched (rejected: " + std::to_string(loops.rejected_score) + " score, " +
+         std::to_string(loops.rejected_ambiguous) + " look-alike, " +
+         std::to_string(loops.rejected_by_graph) + " by the graph), " +
+         std::to_string(loops.optimisations) + " optimisations";
+}
+
+NodePose MapCorrection::operator()(const NodePose& pose) const {
+  return {transform * pose.position, wrap_angle(pose.yaw + yaw)};
+}
+
+MapCorrection MapCorrection::then(const MapCorrection& next) const {
+  return {next.transform * transform, wrap_angle(yaw + next.yaw)};
+}
 
 KeyframeGraph::KeyframeGraph(const SlamConfig::LoopClosure& config) : config_(config) {}
 

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "backend/PoseGraph.hpp"
@@ -31,11 +32,19 @@ struct LoopCounts {
   std::size_t optimisations = 0;
 };
 
+// "12 accepted of 240 searched (rejected: 200 score, 20 look-alike, 8 by the graph),
+// 14 optimisations": how the tools and processes print the counts.
+std::string describe(const LoopCounts& loops);
+
 // World frame before an optimisation -> after, about the newest keyframe: what the front end
 // applies to its pose and map (a turn about the vertical and a shift).
 struct MapCorrection {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
   double yaw = 0.0;  // rad, the turn's angle
+
+  NodePose operator()(const NodePose& pose) const;  // a pose in the old frame, in the new
+  // This correction, then `next`: from this one's old frame to next's new one.
+  MapCorrection then(const MapCorrection& next) const;
 };
 
 class KeyframeGraph {

@@ -300,8 +300,9 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
   report.map_updated = true;
 }
 
-void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
-                               const Eigen::Isometry3d& correction, double yaw) {
+std::vector<std::size_t> SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
+                                                   const Eigen::Isometry3d& correction,
+                                                   double yaw) {
   if (keyframes.size() != keyframes_) {
     throw std::invalid_argument("replace_map: " + std::to_string(keyframes.size()) +
                                 " keyframes for a map of " + std::to_string(keyframes_));
@@ -320,6 +321,7 @@ void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
   pose_.orientation = yaw_rotation(yaw) * pose_.orientation;
   last_map_update_position_ = correction * last_map_update_position_;
   last_map_update_heading_ = std::remainder(last_map_update_heading_ + yaw, 2.0 * M_PI);
+  return first_points;
 }
 
 }  // namespace uavslam

@@ -20,7 +20,8 @@ double seconds_since(Clock::time_point start) {
 
 }  // namespace
 
-VehicleSlam::VehicleSlam(const SlamConfig& config, const DenseProducts& products)
+VehicleSlam::VehicleSlam(const SlamConfig& config, const DenseProducts& products,
+                         BackendThreading threading)
     : pipeline_(config), tracking_(config.recovery.gap) {
   // The odometry is as much "at the scan's time" as the orientation: the same tolerance.
   if (config.icp.motion_prior == MotionPrior::Odometry) {
@@ -30,7 +31,9 @@ VehicleSlam::VehicleSlam(const SlamConfig& config, const DenseProducts& products
     inertial_.emplace(config.motion, config.imu.max_gap);
   if (products.cloud_voxel) cloud_ = std::make_unique<DenseCloud>(*products.cloud_voxel);
   if (products.occupancy) occupancy_ = std::make_unique<OccupancyOctree>(*products.occupancy);
-  if (config.loop_closure.enabled) graph_.emplace(config.loop_closure);
+  if (config.loop_closure.enabled) {
+    graph_ = std::make_unique<GraphWorker>(config.loop_closure, threading);
+  }
 }
 
 void VehicleSlam::add_imu(const ImuSample& sample) {
@@ -61,23 +64,23 @@ void VehicleSlam::scan_posed(const ScanReport& report) {
 // the seed); a scan that got a pose is the next motion's start.
 VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_before) {
   VehicleScan result;
+  // The back end's thread may have moved the map since the last scan.
+  if (graph_) result.map_corrected = apply_graph_update();
   const auto started = Clock::now();
   result.report = pipeline_.process_scan(scan, predicted_motion(scan.stamp));
   if (result.posed()) scan_posed(result.report);
   result.pipeline_seconds = seconds_since(started);
   result.tracking = tracking_.judge(scan, result.report, skipped_before);
-  if (graph_ && result.report.map_updated) {
-    const auto graph_started = Clock::now();
-    result.map_corrected = add_to_graph(result.report);
-    backend_seconds_ += seconds_since(graph_started);
-  }
+  if (graph_ && result.report.map_updated) add_to_graph(result.report);
   if (graph_ && result.posed()) {
-    const std::size_t newest = graph_->size() - 1;
-    backend::Constraint offset;  // the keyframe scan itself: none
-    if (!result.report.map_updated)
-      offset = backend::relative(graph_->pose(newest), node_of(result.report.pose));
-    result.anchor = ScanAnchor{newest, offset};
+    // Both in the map's frame as the scan was matched in it; the keyframe scan itself: no offset.
+    backend::Constraint offset;
+    if (!result.report.map_updated) {
+      offset = backend::relative(newest_keyframe_, node_of(result.report.pose));
+    }
+    result.anchor = ScanAnchor{keyframes_ - (result.report.map_updated ? 0 : 1), offset};
   }
+  if (graph_) result.map_corrected = apply_graph_update() || result.map_corrected;
   if (result.report.map_updated) result.keyframe = keyframe_of(scan, result.report);
   if (result.posed()) add_dense(scan, result.report, result.keyframe ? &*result.keyframe : nullptr);
   return result;
@@ -110,43 +113,67 @@ void VehicleSlam::add_dense(const Scan& scan, const ScanReport& report, const Ke
   occupancy_seconds_ += seconds_since(started);
 }
 
-// The keyframe, with the points (and normals) it added to the map, into the graph; a loop that
-// moved the graph moves the map.
-bool VehicleSlam::add_to_graph(const ScanReport& report) {
+// The keyframe, with the points (and normals) it added to the map, to the back end.
+void VehicleSlam::add_to_graph(const ScanReport& report) {
   const WorldMap& map = pipeline_.map();
   const std::size_t first = map.size() - report.added_points.size();
-  std::vector<Vec3> normals;
+  keyframe_starts_.push_back(first);
+  newest_keyframe_ = node_of(report.pose);
+  GraphKeyframe keyframe{newest_keyframe_, report.added_points, {}, frame_};
   if (!map.normals().empty()) {
-    normals.assign(map.normals().begin() + static_cast<std::ptrdiff_t>(first), map.normals().end());
+    keyframe.normals.assign(map.normals().begin() + static_cast<std::ptrdiff_t>(first),
+                            map.normals().end());
   }
-  const std::optional<backend::MapCorrection> moved =
-      graph_->add(node_of(report.pose), report.added_points, normals);
-  if (!moved) return false;
-  apply(*moved);
+  graph_->add(std::move(keyframe));
+}
+
+// The back end's newest update, if there is one: the keyframes it has where the graph puts them,
+// those it has not seen yet moved by the same correction, the map rebuilt on them, and the pose
+// and the motion prior moved with it.
+bool VehicleSlam::apply_graph_update() {
+  std::optional<GraphUpdate> update = graph_->take();
+  if (!update) return false;
+  const backend::MapCorrection& correction = update->correction;
+  std::vector<MapKeyframe> keyframes = std::move(update->keyframes);
+  const WorldMap& map = pipeline_.map();
+  for (std::size_t k = keyframes.size(); k < keyframe_starts_.size(); ++k) {
+    const std::size_t end = k + 1 < keyframe_starts_.size() ? keyframe_starts_[k + 1] : map.size();
+    MapKeyframe moved;
+    for (std::size_t i = keyframe_starts_[k]; i < end; ++i) {
+      moved.points.push_back(correction.transform * map.point(i));
+      if (!map.normals().empty()) {
+        moved.normals.push_back(correction.transform.linear() * map.normals()[i]);
+      }
+    }
+    keyframes.push_back(std::move(moved));
+  }
+  keyframe_starts_ = pipeline_.replace_map(keyframes, correction.transform, correction.yaw);
+  if (inertial_) inertial_->reanchor(correction.transform);
+  newest_keyframe_ = correction(newest_keyframe_);
+  frame_ = update->frame;
   return true;
 }
 
-void VehicleSlam::apply(const backend::MapCorrection& correction) {
-  std::vector<MapKeyframe> keyframes(graph_->size());
-  for (std::size_t k = 0; k < keyframes.size(); ++k) {
-    keyframes[k].points = graph_->points_in_world(k);
-    keyframes[k].normals = graph_->normals_in_world(k);
-  }
-  pipeline_.replace_map(keyframes, correction.transform, correction.yaw);
-  if (inertial_) inertial_->reanchor(correction.transform);
+std::optional<backend::LoopCounts> VehicleSlam::loops() const {
+  if (!graph_) return std::nullopt;
+  return graph_->counts();
+}
+
+double VehicleSlam::backend_seconds() const {
+  return graph_ ? graph_->seconds() : 0.0;
 }
 
 bool VehicleSlam::finish() {
-  if (!graph_ || graph_->size() == 0) return false;
-  const auto started = Clock::now();
-  apply(*graph_->optimise());
-  backend_seconds_ += seconds_since(started);
+  if (!graph_ || keyframes_ == 0) return false;
+  graph_->finish();
+  apply_graph_update();
+  final_poses_ = graph_->poses();
   return true;
 }
 
 Pose VehicleSlam::smoothed(const Pose& pose, const ScanAnchor& anchor) const {
-  if (!graph_ || anchor.keyframe >= graph_->size()) return pose;
-  const backend::NodePose now = backend::compose(graph_->pose(anchor.keyframe), anchor.offset);
+  if (anchor.keyframe >= final_poses_.size()) return pose;
+  const backend::NodePose now = backend::compose(final_poses_[anchor.keyframe], anchor.offset);
   Pose moved = pose;
   moved.position = now.position;
   moved.orientation = yaw_rotation(now.yaw - heading_of(pose.orientation)) * pose.orientation;

@@ -23,6 +23,7 @@
 #include "core/SlamPipeline.hpp"
 #include "maps/DenseCloud.hpp"
 #include "maps/OccupancyOctree.hpp"
+#include "slam/GraphWorker.hpp"
 #include "slam/InertialPrior.hpp"
 #include "slam/OdometryPrior.hpp"
 #include "slam/TrackingMonitor.hpp"
@@ -51,6 +52,10 @@ struct ScanAnchor {
   backend::Constraint offset;  // the scan's pose seen from the keyframe's
 };
 
+// Where the back end runs: in the scan's call (a run over a log is then the same every time), or
+// on a thread of its own (the matcher process: the scan's path never waits for it).
+using BackendThreading = GraphWorker::Threading;
+
 struct VehicleScan {
   ScanReport report;  // its added_points are moved into keyframe
   std::optional<Keyframe> keyframe;
@@ -65,7 +70,8 @@ struct VehicleScan {
 
 class VehicleSlam {
  public:
-  explicit VehicleSlam(const SlamConfig& config, const DenseProducts& products = {});
+  explicit VehicleSlam(const SlamConfig& config, const DenseProducts& products = {},
+                       BackendThreading threading = BackendThreading::Inline);
 
   // Where the body is at the first scan (the take-off point): the map's frame is anchored there.
   // Before the first scan; the origin when never called.
@@ -93,10 +99,10 @@ class VehicleSlam {
   const InertialPrior* inertial_prior() const { return inertial_ ? &*inertial_ : nullptr; }
   std::size_t keyframes() const { return keyframes_; }
 
-  // The back end (null unless loop_closure.enabled).
-  const backend::KeyframeGraph* graph() const { return graph_ ? &*graph_ : nullptr; }
+  // The back end's loop counts (none unless loop_closure.enabled).
+  std::optional<backend::LoopCounts> loops() const;
   // The end of a run: the graph optimised once more and the map rebuilt on it. False without a
-  // back end or when nothing moved.
+  // back end.
   bool finish();
   // A posed scan's pose where the graph now puts its keyframe (unchanged without a back end).
   Pose smoothed(const Pose& pose, const ScanAnchor& anchor) const;
@@ -107,7 +113,7 @@ class VehicleSlam {
   std::unique_ptr<DenseCloud> take_cloud() { return std::move(cloud_); }
   std::unique_ptr<OccupancyOctree> take_occupancy() { return std::move(occupancy_); }
   double cloud_seconds() const { return cloud_seconds_; }
-  double backend_seconds() const { return backend_seconds_; }  // the graph: loops, optimising
+  double backend_seconds() const;  // the graph: searching loops, optimising
   double occupancy_seconds() const { return occupancy_seconds_; }
 
  private:
@@ -115,8 +121,8 @@ class VehicleSlam {
   void scan_posed(const ScanReport& report);
   Keyframe keyframe_of(const Scan& scan, ScanReport& report);
   void add_dense(const Scan& scan, const ScanReport& report, const Keyframe* keyframe);
-  bool add_to_graph(const ScanReport& report);
-  void apply(const backend::MapCorrection& correction);
+  void add_to_graph(const ScanReport& report);
+  bool apply_graph_update();
 
   SlamPipeline pipeline_;
   std::optional<OdometryPrior> odometry_;
@@ -124,10 +130,13 @@ class VehicleSlam {
   TrackingMonitor tracking_;
   std::unique_ptr<DenseCloud> cloud_;
   std::unique_ptr<OccupancyOctree> occupancy_;
-  std::optional<backend::KeyframeGraph> graph_;
+  std::unique_ptr<GraphWorker> graph_;
+  std::size_t frame_ = 0;                       // the back end's updates applied
+  std::vector<std::size_t> keyframe_starts_;    // each keyframe's first point in the map
+  backend::NodePose newest_keyframe_;           // its pose, in the map's current frame
+  std::vector<backend::NodePose> final_poses_;  // the graph's after finish()
   std::size_t keyframes_ = 0;
   double cloud_seconds_ = 0.0;
-  double backend_seconds_ = 0.0;
   double occupancy_seconds_ = 0.0;
 };
 
