@@ -12,9 +12,9 @@
 namespace uavslam::process {
 namespace {
 
-const std::vector<std::string> kTopics{dds::kScanTopic, dds::kImuTopic,
-                                       dds::kPoseTopic, dds::kMapPointsTopic,
-                                       dds::kMapTopic,  dds::kMatcherStatusTopic};
+const std::vector<std::string> kTopics{
+    dds::kScanTopic, dds::kImuTopic,           dds::kPoseTopic,         dds::kMapPointsTopic,
+    dds::kMapTopic,  dds::kKeyframePosesTopic, dds::kMatcherStatusTopic};
 
 bool is_topic(const std::string& base) {
   return std::find(kTopics.begin(), kTopics.end(), base) != kTopics.end();
@@ -28,7 +28,7 @@ void parse_profile_flags(NodeOptions& options) {
     if (eq == std::string::npos || eq + 1 == flag.size() || !is_topic(topic)) {
       throw io::ConfigError("--profile '" + flag +
                             "': expected TOPIC=PROFILE with TOPIC one of scan, imu, pose, "
-                            "map_points, map, matcher_status");
+                            "map_points, map, keyframe_poses, matcher_status");
     }
     options.profiles[topic] = flag.substr(eq + 1);
   }

@@ -3,24 +3,31 @@
 // snapshots (pruned, maximum likelihood) at most once per publish period and only when the map
 // changed. The `map` writer is TRANSIENT_LOCAL, so a ground station joining late gets the current
 // map. On stop it can write the octree (`map.bt`) and every received point (`map_points.ply`).
+// With the matcher's back end, `keyframe_poses` moves the keyframes after a loop: each keyframe's
+// points go from the pose they were published with to the corrected one and the octree is
+// rebuilt from them.
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
-#include <unordered_set>
 
+#include <msg/KeyframePosesPubSubTypes.h>
 #include <msg/MapPointsPubSubTypes.h>
 #include <msg/OccupancyMapPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
 #include <CLI/CLI.hpp>
 
+#include "backend/KeyframeGraph.hpp"
 #include "common/HandoffQueue.hpp"
 #include "common/IncompatibleQos.hpp"
 #include "common/NodeOptions.hpp"
 #include "common/RunNode.hpp"
 #include "common/StopRequest.hpp"
 #include "dds/Conversions.hpp"
+#include "dds/MatcherMessages.hpp"
 #include "dds/OccupancyMapConversions.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Reader.hpp"
@@ -87,6 +94,14 @@ class MapServerNode {
                     [this](const msg::MapPoints& m, const eprosima::fastdds::dds::SampleInfo&) {
                       queue_.push(m);
                     }),
+        keyframe_poses_(
+            participant_, dds::topic_name(vehicle_, dds::kKeyframePosesTopic),
+            node.profile(dds::kKeyframePosesTopic, "map_reader"),
+            [this](const msg::KeyframePoses& m, const eprosima::fastdds::dds::SampleInfo&) {
+              // Each holds every keyframe: only the newest matters.
+              std::lock_guard<std::mutex> lock(correction_mutex_);
+              correction_ = m;
+            }),
         poses_(participant_, dds::topic_name(vehicle_, dds::kPoseTopic),
                node.profile(dds::kPoseTopic, "state_reader"),
                [this](const msg::PoseWithCovarianceStamped& m,
@@ -104,6 +119,7 @@ class MapServerNode {
     while (!process::stop_requested()) {
       check_qos();
       ingest_queued(std::chrono::milliseconds(100));
+      apply_correction();
       if (map_changed() && Clock::now() - last_publish >= period) {
         last_publish = Clock::now();
         publish_snapshot();
@@ -119,6 +135,7 @@ class MapServerNode {
  private:
   void check_qos() {
     qos_.input(map_points_);
+    qos_.input(keyframe_poses_);
     qos_.input(poses_);
     qos_.output(map_);
   }
@@ -130,27 +147,71 @@ class MapServerNode {
   }
 
   void ingest(const msg::MapPoints& m) {
-    const Points points = dds::from_msg(m);
-    const auto& o = m.sensor_origin();
-    const Vec3 origin(o.x(), o.y(), o.z());
-    if (!is_well_formed_keyframe(points, origin)) {
+    Keyframe keyframe{dds::from_msg(m),
+                      dds::from_msg(m.sensor_origin()),
+                      {dds::from_msg(m.body_position()), m.body_yaw()}};
+    if (!is_well_formed_keyframe(keyframe.points, keyframe.origin)) {
       ++malformed_;
       return;
     }
     // A keyframe delivered again (a TRANSIENT_LOCAL history replayed to us) must not count its
     // points twice.
-    if (!keyframes_seen_.insert(m.keyframe_index()).second) {
+    if (keyframes_.count(m.keyframe_index()) != 0) {
       ++duplicates_;
       return;
     }
+    // A correction that came before it (the topics are not ordered with each other) moves it.
+    const auto corrected = corrected_poses_.find(m.keyframe_index());
+    if (corrected != corrected_poses_.end()) move(keyframe, corrected->second);
     const auto start = Clock::now();
-    octree_.insert_keyframe(points, origin);
+    octree_.insert_keyframe(keyframe.points, keyframe.origin);
     insert_time_.add(start);
-    world_points_.insert(world_points_.end(), points.begin(), points.end());
+    world_points_.insert(world_points_.end(), keyframe.points.begin(), keyframe.points.end());
     last_stamp_ = dds::from_msg_time(m.header().stamp());
+    keyframes_.emplace(m.keyframe_index(), std::move(keyframe));
   }
 
-  bool map_changed() const { return octree_.revision() != published_revision_; }
+  // The newest correction, if one came: every keyframe it names moved to its pose, the octree
+  // and the point list rebuilt from all of them.
+  void apply_correction() {
+    std::optional<msg::KeyframePoses> correction;
+    {
+      std::lock_guard<std::mutex> lock(correction_mutex_);
+      correction.swap(correction_);
+    }
+    if (!correction) return;
+    const auto start = Clock::now();
+    for (const dds::KeyframePlacement& placed : dds::from_msg(*correction)) {
+      corrected_poses_[placed.index] = placed.pose;
+      const auto stored = keyframes_.find(placed.index);
+      if (stored != keyframes_.end()) move(stored->second, placed.pose);
+    }
+    octree_ = make_octree(options_.occupancy);
+    world_points_.clear();
+    for (const auto& [index, keyframe] : keyframes_) {
+      octree_.insert_keyframe(keyframe.points, keyframe.origin);
+      world_points_.insert(world_points_.end(), keyframe.points.begin(), keyframe.points.end());
+    }
+    ++corrections_;
+    rebuild_time_.add(start);
+  }
+
+  struct Keyframe {
+    Points points;
+    Vec3 origin;
+    backend::NodePose body;  // where the points were placed from
+  };
+
+  static void move(Keyframe& keyframe, const backend::NodePose& to) {
+    const backend::MapCorrection c = backend::correction_between(keyframe.body, to);
+    for (Vec3& p : keyframe.points) p = c.transform * p;
+    keyframe.origin = c.transform * keyframe.origin;
+    keyframe.body = to;
+  }
+
+  bool map_changed() const {
+    return octree_.revision() != published_revision_ || corrections_ != published_corrections_;
+  }
 
   void publish_snapshot() {
     const auto start = Clock::now();
@@ -163,6 +224,7 @@ class MapServerNode {
     }
     publish_time_.add(start);
     published_revision_ = octree_.revision();
+    published_corrections_ = corrections_;
     last_snapshot_bytes_ = snapshot.octomap_binary().size();
   }
 
@@ -188,7 +250,9 @@ class MapServerNode {
               << " snapshots published (last " << last_snapshot_bytes_ << " bytes, "
               << publish_time_.mean_ms() << " ms mean, " << publish_time_.max_ms
               << " ms max); dropped " << duplicates_ << " duplicate and " << malformed_
-              << " malformed keyframes; " << poses_.received() << " poses seen";
+              << " malformed keyframes; " << corrections_
+              << " corrections from the back end applied (rebuild " << rebuild_time_.mean_ms()
+              << " ms mean); " << poses_.received() << " poses seen";
     if (poses_.received() > 0) {
       const Vec3& p = last_pose_.position;
       std::cerr << " (last at " << p.x() << ", " << p.y() << ", " << p.z() << ")";
@@ -200,7 +264,13 @@ class MapServerNode {
   MapServerOptions options_;
   OccupancyOctree octree_;
   Points world_points_;
-  std::unordered_set<std::uint32_t> keyframes_seen_;
+  std::map<std::uint32_t, Keyframe> keyframes_;                 // by index, as last placed
+  std::map<std::uint32_t, backend::NodePose> corrected_poses_;  // the newest correction's
+  std::mutex correction_mutex_;
+  std::optional<msg::KeyframePoses> correction_;  // received, not applied yet
+  std::uint64_t corrections_ = 0;
+  std::uint64_t published_corrections_ = 0;
+  TimeFigure rebuild_time_;
   std::uint64_t duplicates_ = 0;
   std::uint64_t malformed_ = 0;
   std::uint64_t published_revision_ = 0;
@@ -217,6 +287,7 @@ class MapServerNode {
   dds::Participant participant_;
   dds::Writer<msg::OccupancyMapPubSubType> map_;
   dds::Reader<msg::MapPointsPubSubType> map_points_;
+  dds::Reader<msg::KeyframePosesPubSubType> keyframe_poses_;
   dds::Reader<msg::PoseWithCovarianceStampedPubSubType> poses_;
 };
 

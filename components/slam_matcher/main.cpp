@@ -13,6 +13,7 @@
 #include <memory>
 
 #include <msg/ImuPubSubTypes.h>
+#include <msg/KeyframePosesPubSubTypes.h>
 #include <msg/LaserScanPubSubTypes.h>
 #include <msg/MapPointsPubSubTypes.h>
 #include <msg/MatcherStatusPubSubTypes.h>
@@ -74,6 +75,8 @@ class MatcherNode {
               node.profile(dds::kPoseTopic, "state_writer")),
         map_points_(participant_, dds::topic_name(vehicle_, dds::kMapPointsTopic),
                     node.profile(dds::kMapPointsTopic, "map_points_writer")),
+        keyframe_poses_(participant_, dds::topic_name(vehicle_, dds::kKeyframePosesTopic),
+                        node.profile(dds::kKeyframePosesTopic, "map_writer")),
         status_(participant_, dds::topic_name(vehicle_, dds::kMatcherStatusTopic),
                 node.profile(dds::kMatcherStatusTopic, "status_writer")),
         scans_(participant_, dds::topic_name(vehicle_, dds::kScanTopic),
@@ -170,6 +173,12 @@ class MatcherNode {
       dead_reckoned_ += result.report.dead_reckoned;
     }
     counts_.accepted += result.report.accepted();
+    // The back end moved the keyframes: every one where it now is, before the newest keyframe
+    // goes out in the corrected frame.
+    if (result.map_corrected) {
+      keyframe_poses_.write(
+          dds::keyframe_poses_message(slam_.keyframe_poses(), scan.stamp, ++corrections_, source));
+    }
     if (result.keyframe) map_points_.write(dds::keyframe_message(*result.keyframe, source));
     counts_.rejected += !result.report.accepted();
     counts_.received = queue_.scans_received();
@@ -207,7 +216,8 @@ class MatcherNode {
                 << " without (no odometry near the scan or the last posed scan)\n";
     }
     if (const std::optional<backend::LoopCounts> loops = slam_.loops()) {
-      std::cerr << "slam_matcher: loops: " << backend::describe(*loops) << "\n";
+      std::cerr << "slam_matcher: loops: " << backend::describe(*loops) << "; " << corrections_
+                << " corrections published\n";
     }
     if (velocity_) {
       std::cerr << "slam_matcher: velocity: " << queue_.velocity_received() << " samples received, "
@@ -226,6 +236,8 @@ class MatcherNode {
   dds::Participant participant_;
   dds::Writer<msg::PoseWithCovarianceStampedPubSubType> pose_;
   dds::Writer<msg::MapPointsPubSubType> map_points_;
+  dds::Writer<msg::KeyframePosesPubSubType> keyframe_poses_;
+  std::uint64_t corrections_ = 0;  // keyframe_poses published
   dds::Writer<msg::MatcherStatusPubSubType> status_;
   dds::Reader<msg::LaserScanPubSubType> scans_;
   std::unique_ptr<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>> odometry_;   // or none

@@ -54,16 +54,6 @@ std::vector<Eigen::Vector2d> thinned(const std::vector<Eigen::Vector2d>& points,
   return kept;
 }
 
-// The map's correction about a keyframe that moved from `before` to `after`:
-//   p' = R(after.yaw - before.yaw) (p - before.position) + after.position
-MapCorrection correction_between(const NodePose& before, const NodePose& after) {
-  MapCorrection c;
-  c.yaw = wrap_angle(after.yaw - before.yaw);
-  c.transform.linear() = heading(c.yaw);
-  c.transform.translation() = after.position - heading(c.yaw) * before.position;
-  return c;
-}
-
 }  // namespace
 
 std::string describe(const LoopCounts& loops) {
@@ -72,6 +62,14 @@ std::string describe(const LoopCounts& loops) {
          std::to_string(loops.rejected_ambiguous) + " look-alike, " +
          std::to_string(loops.rejected_by_graph) + " by the graph), " +
          std::to_string(loops.optimisations) + " optimisations";
+}
+
+MapCorrection correction_between(const NodePose& before, const NodePose& after) {
+  MapCorrection c;
+  c.yaw = wrap_angle(after.yaw - before.yaw);
+  c.transform.linear() = heading(c.yaw);
+  c.transform.translation() = after.position - heading(c.yaw) * before.position;
+  return c;
 }
 
 NodePose MapCorrection::operator()(const NodePose& pose) const {

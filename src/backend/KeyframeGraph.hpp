@@ -47,6 +47,10 @@ struct MapCorrection {
   MapCorrection then(const MapCorrection& next) const;
 };
 
+// The correction that moves `before` onto `after` (and everything placed from it with it):
+//   p' = R(after.yaw - before.yaw) (p - before.position) + after.position
+MapCorrection correction_between(const NodePose& before, const NodePose& after);
+
 class KeyframeGraph {
  public:
   explicit KeyframeGraph(const SlamConfig::LoopClosure& config);

@@ -2,8 +2,9 @@
 
 #include <cmath>
 
+#include "core/Heading.hpp"
+
 namespace uavslam::dds {
-namespace {
 
 msg::Header make_header(double stamp, std::uint64_t seq, const Source& source) {
   msg::Header header;
@@ -25,6 +26,8 @@ msg::Vector3 to_msg(const Vec3& v) {
 Vec3 from_msg(const msg::Vector3& m) {
   return {m.x(), m.y(), m.z()};
 }
+
+namespace {
 
 msg::Quaternion to_msg(const Eigen::Quaterniond& q) {
   msg::Quaternion m;
@@ -153,12 +156,14 @@ Pose from_msg(const msg::PoseWithCovarianceStamped& message) {
   return pose;
 }
 
-msg::MapPoints to_msg(const Points& points, const Vec3& sensor_origin, double stamp,
+msg::MapPoints to_msg(const Points& points, const Vec3& sensor_origin, const Pose& body,
                       std::uint32_t keyframe_index, const Source& source) {
   msg::MapPoints m;
-  m.header(make_header(stamp, keyframe_index, source));
+  m.header(make_header(body.stamp, keyframe_index, source));
   m.keyframe_index(keyframe_index);
   m.sensor_origin(to_msg(sensor_origin));
+  m.body_position(to_msg(body.position));
+  m.body_yaw(heading_of(body.orientation));
   m.points().reserve(points.size());
   for (const Vec3& p : points) {
     msg::Point32 q;

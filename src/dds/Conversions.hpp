@@ -22,6 +22,11 @@ struct Source {
   std::string vehicle_id;
 };
 
+// A header stamped `stamp` (s) with this sequence number and source.
+msg::Header make_header(double stamp, std::uint64_t seq, const Source& source);
+msg::Vector3 to_msg(const Vec3& v);
+Vec3 from_msg(const msg::Vector3& m);
+
 // Seconds as a double <-> (sec, nanosec), rounded to the nearest nanosecond.
 msg::Time to_msg_time(double seconds);
 double from_msg_time(const msg::Time& time);
@@ -52,7 +57,8 @@ msg::PoseWithCovarianceStamped to_msg(const Pose& pose, float quality, std::uint
                                       std::uint64_t seq, const Source& source);
 Pose from_msg(const msg::PoseWithCovarianceStamped& message);
 
-msg::MapPoints to_msg(const Points& points, const Vec3& sensor_origin, double stamp,
+// body: the keyframe's body pose (its position and heading), where the points were placed from.
+msg::MapPoints to_msg(const Points& points, const Vec3& sensor_origin, const Pose& body,
                       std::uint32_t keyframe_index, const Source& source);
 Points from_msg(const msg::MapPoints& message);
 

@@ -27,7 +27,31 @@ msg::PoseWithCovarianceStamped pose_message(const ScanReport& report, const Slam
 }
 
 msg::MapPoints keyframe_message(const Keyframe& keyframe, const Source& source) {
-  return to_msg(keyframe.points, keyframe.sensor_origin, keyframe.stamp, keyframe.index, source);
+  return to_msg(keyframe.points, keyframe.sensor_origin, keyframe.body, keyframe.index, source);
+}
+
+msg::KeyframePoses keyframe_poses_message(const std::vector<backend::NodePose>& poses, double stamp,
+                                          std::uint64_t correction, const Source& source) {
+  msg::KeyframePoses m;
+  m.header(make_header(stamp, correction, source));
+  m.keyframes().reserve(poses.size());
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    msg::KeyframePose p;
+    p.keyframe_index(static_cast<std::uint32_t>(k));
+    p.position(to_msg(poses[k].position));
+    p.yaw(poses[k].yaw);
+    m.keyframes().push_back(p);
+  }
+  return m;
+}
+
+std::vector<KeyframePlacement> from_msg(const msg::KeyframePoses& message) {
+  std::vector<KeyframePlacement> placements;
+  placements.reserve(message.keyframes().size());
+  for (const msg::KeyframePose& p : message.keyframes()) {
+    placements.push_back({p.keyframe_index(), {from_msg(p.position()), p.yaw()}});
+  }
+  return placements;
 }
 
 msg::MatcherStatus status_message(const VehicleScan& result, const Scan& scan, double latency_ms,

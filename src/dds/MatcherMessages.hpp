@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
+#include <msg/KeyframePoses.h>
 #include <msg/MapPoints.h>
 #include <msg/MatcherStatus.h>
 #include <msg/Pose.h>
@@ -30,6 +32,16 @@ msg::PoseWithCovarianceStamped pose_message(const ScanReport& report, const Slam
 
 // The header's seq is the keyframe's index.
 msg::MapPoints keyframe_message(const Keyframe& keyframe, const Source& source);
+
+// The back end's keyframe poses after a correction (`keyframe_poses`), every keyframe made so
+// far in the map's current frame; the header's seq is the correction's number.
+msg::KeyframePoses keyframe_poses_message(const std::vector<backend::NodePose>& poses, double stamp,
+                                          std::uint64_t correction, const Source& source);
+struct KeyframePlacement {
+  std::uint32_t index = 0;
+  backend::NodePose pose;
+};
+std::vector<KeyframePlacement> from_msg(const msg::KeyframePoses& message);
 
 // The matcher's running counts, as the status carries them.
 struct MatcherCounts {

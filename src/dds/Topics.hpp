@@ -13,9 +13,11 @@ inline constexpr char kImuTopic[] = "imu";                       // Imu, sensor
 inline constexpr char kPoseTopic[] = "pose";                     // PoseWithCovarianceStamped, state
 inline constexpr char kMapPointsTopic[] = "map_points";          // MapPoints, map_points
 inline constexpr char kMapTopic[] = "map";                       // OccupancyMap, map
+inline constexpr char kKeyframePosesTopic[] = "keyframe_poses";  // KeyframePoses, map
 inline constexpr char kMatcherStatusTopic[] = "matcher_status";  // MatcherStatus, status
 inline constexpr char kOdometryTopic[] = "odom";      // PoseWithCovarianceStamped, sensor
 inline constexpr char kVelocityTopic[] = "velocity";  // TwistWithCovarianceStamped, sensor
+// `keyframe_poses`: the back end's corrected keyframe poses after a loop (loop_closure.enabled).
 // `velocity`: the autopilot's velocity estimate (optical flow, VIO) in the orientation source's
 // frame, for the IMU motion prior (motion.fuse_velocity).
 // `odom`: wheel odometry, the pose of the scanner (position, heading) in the odometry's own frame

@@ -76,7 +76,7 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
     // Both in the map's frame as the scan was matched in it; the keyframe scan itself: no offset.
     backend::Constraint offset;
     if (!result.report.map_updated) {
-      offset = backend::relative(newest_keyframe_, node_of(result.report.pose));
+      offset = backend::relative(keyframe_poses_.back(), node_of(result.report.pose));
     }
     result.anchor = ScanAnchor{keyframes_ - (result.report.map_updated ? 0 : 1), offset};
   }
@@ -90,7 +90,7 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
 Keyframe VehicleSlam::keyframe_of(const Scan& scan, ScanReport& report) {
   Keyframe keyframe;
   keyframe.index = static_cast<std::uint32_t>(keyframes_++);
-  keyframe.stamp = report.pose.stamp;
+  keyframe.body = report.pose;
   keyframe.sensor_origin =
       report.pose.position + report.pose.orientation * scan.geometry->mount.translation();
   keyframe.points = std::move(report.added_points);
@@ -118,8 +118,8 @@ void VehicleSlam::add_to_graph(const ScanReport& report) {
   const WorldMap& map = pipeline_.map();
   const std::size_t first = map.size() - report.added_points.size();
   keyframe_starts_.push_back(first);
-  newest_keyframe_ = node_of(report.pose);
-  GraphKeyframe keyframe{newest_keyframe_, report.added_points, {}, frame_};
+  keyframe_poses_.push_back(node_of(report.pose));
+  GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_};
   if (!map.normals().empty()) {
     keyframe.normals.assign(map.normals().begin() + static_cast<std::ptrdiff_t>(first),
                             map.normals().end());
@@ -149,7 +149,10 @@ bool VehicleSlam::apply_graph_update() {
   }
   keyframe_starts_ = pipeline_.replace_map(keyframes, correction.transform, correction.yaw);
   if (inertial_) inertial_->reanchor(correction.transform);
-  newest_keyframe_ = correction(newest_keyframe_);
+  for (std::size_t k = 0; k < keyframe_poses_.size(); ++k) {
+    keyframe_poses_[k] =
+        k < update->poses.size() ? update->poses[k] : correction(keyframe_poses_[k]);
+  }
   frame_ = update->frame;
   return true;
 }

@@ -39,8 +39,8 @@ struct DenseProducts {
 // What a keyframe adds to the map, as the map's consumers take it (the map server, the offline
 // occupancy map).
 struct Keyframe {
-  std::uint32_t index = 0;  // 0, 1, ... in the order the keyframes were made
-  double stamp = 0.0;
+  std::uint32_t index = 0;            // 0, 1, ... in the order the keyframes were made
+  Pose body;                          // the body's pose at the keyframe, stamped
   Vec3 sensor_origin = Vec3::Zero();  // where the scanner was: the origin of its rays
   Points points;                      // the aligned points it added to the world map
 };
@@ -98,6 +98,9 @@ class VehicleSlam {
   // Null unless icp.motion_prior is imu.
   const InertialPrior* inertial_prior() const { return inertial_ ? &*inertial_ : nullptr; }
   std::size_t keyframes() const { return keyframes_; }
+  // With the back end: every keyframe's pose in the map's current frame (the graph's where it
+  // has them); what consumers of the keyframes move their points to after a correction.
+  const std::vector<backend::NodePose>& keyframe_poses() const { return keyframe_poses_; }
 
   // The back end's loop counts (none unless loop_closure.enabled).
   std::optional<backend::LoopCounts> loops() const;
@@ -131,10 +134,10 @@ class VehicleSlam {
   std::unique_ptr<DenseCloud> cloud_;
   std::unique_ptr<OccupancyOctree> occupancy_;
   std::unique_ptr<GraphWorker> graph_;
-  std::size_t frame_ = 0;                       // the back end's updates applied
-  std::vector<std::size_t> keyframe_starts_;    // each keyframe's first point in the map
-  backend::NodePose newest_keyframe_;           // its pose, in the map's current frame
-  std::vector<backend::NodePose> final_poses_;  // the graph's after finish()
+  std::size_t frame_ = 0;                          // the back end's updates applied
+  std::vector<std::size_t> keyframe_starts_;       // each keyframe's first point in the map
+  std::vector<backend::NodePose> keyframe_poses_;  // in the map's current frame
+  std::vector<backend::NodePose> final_poses_;     // the graph's after finish()
   std::size_t keyframes_ = 0;
   double cloud_seconds_ = 0.0;
   double occupancy_seconds_ = 0.0;

@@ -6,6 +6,8 @@
 #include <iostream>
 #include <iterator>
 #include <mutex>
+#include <optional>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,7 @@ constexpr int kDomain = 171;              // this test's own DDS domain
 constexpr int kIncompatibleDomain = 190;  // the incompatible-QoS test's
 constexpr int kCorridorDomain = 179;      // the plain corridor's
 constexpr int kVelocityDomain = 202;      // the corridor with the autopilot's velocity
+constexpr int kLoopDomain = 108;          // the drifting IMU's flight with the back end
 const std::string kScenario = std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/short.yaml";
 
 // What the ground saw of one scenario flown by lidar_driver, imu_bridge and slam_matcher (with
@@ -44,6 +47,7 @@ struct FlightOverDds {
   std::vector<msg::PoseWithCovarianceStamped> poses;
   std::vector<msg::MatcherStatus> statuses;
   std::string matcher_log;
+  std::string map_server_log;  // with_map_server only
   double ate_horizontal = 0.0;
 };
 
@@ -52,8 +56,11 @@ class DdsPipeline : public test::ProcessTest {
   // The matcher's readers match the ground's first, then the sensors start on a shared timeline;
   // the flight ends when the status of its last scan (`last_scan`) comes, or the matcher goes
   // quiet.
+  // slam_config: the matcher's (default config/slam.yaml); with_map_server: a map server runs
+  // beside it.
   FlightOverDds fly_over_dds(const std::string& scenario, int domain, const std::string& label,
-                             std::uint64_t last_scan);
+                             std::uint64_t last_scan, const std::string& slam_config = "",
+                             bool with_map_server = false);
 
   // A process of this test: on its own domain, for vehicle uav1.
   static std::vector<std::string> node(const char* name, std::vector<std::string> extra,
@@ -128,7 +135,8 @@ TEST_F(DdsPipeline, ThreeProcessesTrackTheShortFlight) {
 }
 
 FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
-                                        const std::string& label, std::uint64_t last_scan) {
+                                        const std::string& label, std::uint64_t last_scan,
+                                        const std::string& slam_config, bool with_map_server) {
   FlightOverDds flight;
   dds::Participant ground(domain, dds::default_profiles_path(), "uavslam_loopback", "test");
   std::mutex mutex;
@@ -151,11 +159,18 @@ FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
         changed.notify_all();
       });
 
-  process::ChildProcess matcher(node("slam_matcher",
-                                     {"--sensor", scenario, "--slam-config",
-                                      std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml"},
-                                     domain),
-                                log_path("slam_matcher_" + label));
+  std::optional<process::ChildProcess> map_server;
+  if (with_map_server) {
+    map_server.emplace(node("map_server", {"--publish-period", "0.5"}, domain),
+                       log_path("map_server_" + label));
+  }
+  process::ChildProcess matcher(
+      node("slam_matcher",
+           {"--sensor", scenario, "--slam-config",
+            slam_config.empty() ? std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml"
+                                : slam_config},
+           domain),
+      log_path("slam_matcher_" + label));
   EXPECT_TRUE(matcher.started());
   EXPECT_TRUE(pose_reader.wait_for_matched(1, 30s)) << matcher.log();
   EXPECT_TRUE(status_reader.wait_for_matched(1, 30s)) << matcher.log();
@@ -164,9 +179,9 @@ FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
                             log_path("imu_bridge_" + label));
   process::ChildProcess lidar(node("lidar_driver", sensor_flags(scenario, start_at), domain),
                               log_path("lidar_driver_" + label));
-  EXPECT_TRUE(lidar.wait(60s)) << lidar.log();
+  EXPECT_TRUE(lidar.wait(120s)) << lidar.log();
   EXPECT_EQ(lidar.exit_code(), 0) << lidar.log();
-  EXPECT_TRUE(imu.wait(60s)) << imu.log();
+  EXPECT_TRUE(imu.wait(120s)) << imu.log();
   EXPECT_EQ(imu.exit_code(), 0) << imu.log();
   {
     std::unique_lock<std::mutex> lock(mutex);
@@ -175,6 +190,11 @@ FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
   EXPECT_EQ(matcher.stop(10s), 0) << matcher.log();
   flight.matcher_log = matcher.log();
   std::cerr << imu.log() << lidar.log() << flight.matcher_log;
+  if (map_server) {
+    EXPECT_EQ(map_server->stop(10s), 0) << map_server->log();
+    flight.map_server_log = map_server->log();
+    std::cerr << flight.map_server_log;
+  }
 
   std::lock_guard<std::mutex> lock(mutex);
   sim::FlightSimulator truth(io::load_scenario(scenario));
@@ -231,6 +251,34 @@ TEST_F(DdsPipeline, ThePlainCorridorsBlindAxisIsOnTheWire) {
 // (flow_corridor.yaml): imu_bridge publishes `velocity` beside `imu`, the matcher fuses it (the
 // shipped config's motion.fuse_velocity), and the vehicle is carried down the corridor where the
 // IMU alone ends metres off (uavslam simulate: 3.3 m).
+// The drifting IMU's flight (yaw_drift.yaml, 180 s at 4x) with the back end on: the matcher
+// closes loops on its own thread and publishes each correction (`keyframe_poses`), and the map
+// server moves its keyframes and rebuilds its map with every one.
+TEST_F(DdsPipeline, TheBackEndsCorrectionsReachTheMapServer) {
+  const std::string config = path("slam_loops.yaml");
+  {
+    std::ifstream shipped(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
+    std::ofstream(config) << shipped.rdbuf() << "\nloop_closure:\n  enabled: true\n";
+  }
+  const FlightOverDds flight =
+      fly_over_dds(std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/yaw_drift.yaml",
+                   kLoopDomain, "loops", 7200, config, true);
+  ASSERT_FALSE(HasFailure());
+  static const std::regex loops(R"(loops: (\d+) accepted[^;]*; (\d+) corrections published)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(flight.matcher_log, m, loops)) << flight.matcher_log;
+  EXPECT_GT(std::stoi(m[1]), 0) << flight.matcher_log;
+  const int published = std::stoi(m[2]);
+  EXPECT_GT(published, 0) << flight.matcher_log;
+  static const std::regex applied(R"((\d+) corrections from the back end applied)");
+  ASSERT_TRUE(std::regex_search(flight.map_server_log, m, applied)) << flight.map_server_log;
+  // Each message holds every keyframe: the server may fold two that came together into one.
+  EXPECT_GE(std::stoi(m[1]), 1);
+  EXPECT_LE(std::stoi(m[1]), published);
+  EXPECT_GE(flight.poses.size(), 6500u) << "of 7201 scans";
+  EXPECT_LT(flight.ate_horizontal, 0.25);
+}
+
 TEST_F(DdsPipeline, TheAutopilotsVelocityOnTheWireCarriesTheCorridor) {
   const FlightOverDds flight =
       fly_over_dds(std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/flow_corridor.yaml",

@@ -13,12 +13,14 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <msg/KeyframePosesPubSubTypes.h>
 #include <msg/MapPointsPubSubTypes.h>
 #include <msg/OccupancyMapPubSubTypes.h>
 
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
 #include "dds/Conversions.hpp"
+#include "dds/MatcherMessages.hpp"
 #include "dds/OccupancyMapConversions.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Profiles.hpp"
@@ -36,6 +38,7 @@ using namespace std::chrono_literals;
 constexpr int kMapDomain = 172;  // this test's own DDS domains
 constexpr int kConfigDomain = 173;
 constexpr int kIncompatibleDomain = 174;
+constexpr int kCorrectionDomain = 103;
 
 // Room walls at x = +-2.05 and y = +-2.05 (cell centres of the 0.1 m grid), 0.05 .. 1.95 m high.
 // The sensor sits at the centre, 1.05 m up.
@@ -57,8 +60,12 @@ std::vector<Points> room_walls() {
   return {wall(0, 2.05), wall(0, -1.95), wall(1, 2.05), wall(1, -1.95)};
 }
 
+// Every keyframe made at the room's centre, heading along x.
 msg::MapPoints keyframe(const Points& points, std::uint32_t index) {
-  return dds::to_msg(points, kOrigin, 100.0 + index, index, dds::Source{"map", "uav1"});
+  Pose body;
+  body.stamp = 100.0 + index;
+  body.position = kOrigin - Vec3(0.0, 0.0, 0.1);
+  return dds::to_msg(points, kOrigin, body, index, dds::Source{"map", "uav1"});
 }
 
 bool occupied(const octomap::OcTree& tree, const Vec3& p) {
@@ -83,8 +90,13 @@ class SnapshotInbox {
   }
   std::optional<msg::OccupancyMap> wait_for_points(std::uint64_t points,
                                                    std::chrono::seconds timeout) {
+    return wait_for([&](const msg::OccupancyMap& m) { return m.map_points() >= points; }, timeout);
+  }
+  // The newest snapshot once one satisfies `holds` (or the newest at the timeout).
+  template <typename Predicate>
+  std::optional<msg::OccupancyMap> wait_for(Predicate holds, std::chrono::seconds timeout) {
     std::unique_lock<std::mutex> lock(mutex_);
-    changed_.wait_for(lock, timeout, [&] { return latest_ && latest_->map_points() >= points; });
+    changed_.wait_for(lock, timeout, [&] { return latest_ && holds(*latest_); });
     return latest_;
   }
 
@@ -181,6 +193,65 @@ TEST_F(MapServerProcess, ALateJoinerGetsTheCurrentMapAndDuplicatesAreIgnored) {
   EXPECT_TRUE(occupied(saved, Vec3(2.05, 0.05, 1.05)));
   EXPECT_TRUE(free_space(saved, Vec3(1.05, 0.05, 1.05)));
   EXPECT_EQ(io::read_ply((out / "map_points.ply").string()).size(), wall_points + 2);
+}
+
+// The matcher's back end closed a loop: `keyframe_poses` moves keyframe 0 (the wall at x = 2.05)
+// half a metre along x, and names keyframe 7, which has not arrived yet. The map is rebuilt with
+// the wall moved, and keyframe 7 is moved as it arrives (the two topics are not ordered).
+TEST_F(MapServerProcess, TheBackEndsCorrectionMovesTheKeyframesAndTheMapIsRebuilt) {
+  dds::Participant ground(kCorrectionDomain, dds::default_profiles_path(), "uavslam_loopback",
+                          "test");
+  dds::Writer<msg::MapPointsPubSubType> keyframes(
+      ground, dds::topic_name("uav1", dds::kMapPointsTopic), "map_points_writer");
+  dds::Writer<msg::KeyframePosesPubSubType> corrections(
+      ground, dds::topic_name("uav1", dds::kKeyframePosesTopic), "map_writer");
+  SnapshotInbox inbox;
+  dds::Reader<msg::OccupancyMapPubSubType> maps(
+      ground, dds::topic_name("uav1", dds::kMapTopic), "map_reader",
+      [&](const msg::OccupancyMap& m, const eprosima::fastdds::dds::SampleInfo&) { inbox.put(m); });
+  process::ChildProcess server(map_server(kCorrectionDomain, {"--publish-period", "0.2"}),
+                               log_path("map_server"));
+  ASSERT_TRUE(server.started());
+  ASSERT_TRUE(keyframes.wait_for_matched(1, 30s)) << server.log();
+  ASSERT_TRUE(corrections.wait_for_matched(1, 30s)) << server.log();
+  ASSERT_TRUE(maps.wait_for_matched(1, 30s)) << server.log();
+
+  const std::vector<Points> walls = room_walls();
+  std::uint64_t wall_points = 0;
+  for (std::uint32_t i = 0; i < walls.size(); ++i) {
+    ASSERT_TRUE(keyframes.write(keyframe(walls[i], i)));
+    wall_points += walls[i].size();
+  }
+  const Vec3 on_wall(2.05, 0.05, 1.05);
+  const Vec3 moved_wall(2.55, 0.05, 1.05);
+  const auto before = inbox.wait_for_points(wall_points, 30s);
+  ASSERT_TRUE(before && before->map_points() == wall_points) << server.log();
+  EXPECT_TRUE(occupied(*dds::octree_from_msg(*before), on_wall));
+
+  const Vec3 body = kOrigin - Vec3(0.0, 0.0, 0.1);
+  std::vector<backend::NodePose> poses(8, backend::NodePose{body, 0.0});
+  poses[0].position += Vec3(0.5, 0.0, 0.0);
+  poses[7].position += Vec3(0.0, -0.5, 0.0);
+  ASSERT_TRUE(corrections.write(dds::keyframe_poses_message(poses, 104.0, 1, {"map", "uav1"})));
+  const auto after = inbox.wait_for(
+      [&](const msg::OccupancyMap& m) { return occupied(*dds::octree_from_msg(m), moved_wall); },
+      30s);
+  ASSERT_TRUE(after) << server.log();
+  const auto tree = dds::octree_from_msg(*after);
+  EXPECT_TRUE(occupied(*tree, moved_wall)) << server.log();
+  EXPECT_FALSE(occupied(*tree, on_wall));
+  EXPECT_TRUE(occupied(*tree, Vec3(-1.95, 1.05, 0.45))) << "the other walls stay";
+  EXPECT_EQ(after->map_points(), wall_points);
+
+  const Points floor_patch{{0.05, 0.05, -0.95}, {0.15, 0.05, -0.95}};
+  ASSERT_TRUE(keyframes.write(keyframe(floor_patch, 7)));
+  const auto last = inbox.wait_for_points(wall_points + floor_patch.size(), 30s);
+  ASSERT_TRUE(last && last->map_points() == wall_points + floor_patch.size()) << server.log();
+  EXPECT_TRUE(occupied(*dds::octree_from_msg(*last), Vec3(0.05, -0.45, -0.95)));
+  EXPECT_FALSE(occupied(*dds::octree_from_msg(*last), floor_patch[0]));
+
+  EXPECT_EQ(server.stop(10s), 0) << server.log();
+  EXPECT_THAT(server.log(), ::testing::HasSubstr("1 corrections from the back end applied"));
 }
 
 TEST_F(MapServerProcess, ABadConfigValueIsNamedAndRefused) {

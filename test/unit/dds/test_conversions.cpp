@@ -86,9 +86,16 @@ TEST(Conversions, PoseRoundTrips) {
 
 TEST(Conversions, MapPointsRoundTripInFloatPrecision) {
   const Points points = {Vec3(1.25, 2.5, 0.75), Vec3(-19.999, 14.001, 3.999)};
-  const msg::MapPoints m = to_msg(points, Vec3(1, 1, 1.6), 5.0, 3, kSource);
+  Pose body;
+  body.stamp = 5.0;
+  body.position = Vec3(1, 1, 1.5);
+  body.orientation = Eigen::AngleAxisd(-1.2, Vec3::UnitZ());
+  const msg::MapPoints m = to_msg(points, Vec3(1, 1, 1.6), body, 3, kSource);
   EXPECT_EQ(m.keyframe_index(), 3u);
   EXPECT_EQ(m.sensor_origin().z(), 1.6);
+  EXPECT_EQ(from_msg(m.body_position()), body.position);
+  EXPECT_NEAR(m.body_yaw(), -1.2, 1e-12);
+  EXPECT_NEAR(from_msg_time(m.header().stamp()), 5.0, 1e-9);
   const Points back = from_msg(m);
   ASSERT_EQ(back.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) EXPECT_LT((back[i] - points[i]).norm(), 1e-5);

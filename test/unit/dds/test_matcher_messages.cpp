@@ -27,7 +27,9 @@ TEST(MatcherMessages, QualityFallsFromOneForAPerfectFitToTheLeastAtTheRejectionL
 TEST(MatcherMessages, TheKeyframeAndTheStatusCarryWhatTheScanGave) {
   Keyframe keyframe;
   keyframe.index = 4;
-  keyframe.stamp = 12.5;
+  keyframe.body.stamp = 12.5;
+  keyframe.body.position = Vec3(1.0, 2.0, 0.2);
+  keyframe.body.orientation = Eigen::AngleAxisd(0.4, Vec3::UnitZ());
   keyframe.sensor_origin = Vec3(1.0, 2.0, 0.3);
   keyframe.points = {Vec3(1.5, 2.0, 0.3), Vec3(1.0, 2.5, 0.3)};
   const msg::MapPoints points = keyframe_message(keyframe, {"map", "uav1"});
@@ -35,6 +37,9 @@ TEST(MatcherMessages, TheKeyframeAndTheStatusCarryWhatTheScanGave) {
   EXPECT_EQ(points.header().seq(), 4u);
   EXPECT_EQ(points.header().vehicle_id(), "uav1");
   EXPECT_FLOAT_EQ(points.sensor_origin().z(), 0.3f);
+  EXPECT_DOUBLE_EQ(points.body_position().z(), 0.2);
+  EXPECT_NEAR(points.body_yaw(), 0.4, 1e-12);
+  EXPECT_DOUBLE_EQ(from_msg_time(points.header().stamp()), 12.5);
   ASSERT_EQ(from_msg(points).size(), 2u);
   EXPECT_TRUE(from_msg(points)[1].isApprox(Vec3(1.0, 2.5, 0.3), 1e-6));
 
@@ -96,6 +101,20 @@ TEST(MatcherMessages, ThePoseCarriesTheCovariance) {
   EXPECT_DOUBLE_EQ(m.covariance()[28], 0.02 * 0.02);
   EXPECT_DOUBLE_EQ(m.covariance()[35], 0.05 * 0.05);
   EXPECT_EQ(m.covariance()[3], 0.0) << "no cross-covariance between position and attitude";
+}
+
+TEST(MatcherMessages, KeyframePosesRoundTrip) {
+  const std::vector<backend::NodePose> poses = {{Vec3(0.0, 0.0, 0.3), 0.0},
+                                                {Vec3(1.5, -2.0, 1.2), -2.5}};
+  const msg::KeyframePoses m = keyframe_poses_message(poses, 30.25, 3, {"map", "uav1"});
+  EXPECT_EQ(m.header().seq(), 3u);
+  EXPECT_EQ(m.header().vehicle_id(), "uav1");
+  EXPECT_DOUBLE_EQ(from_msg_time(m.header().stamp()), 30.25);
+  const std::vector<KeyframePlacement> back = from_msg(m);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[1].index, 1u);
+  EXPECT_EQ(back[1].pose.position, poses[1].position);
+  EXPECT_EQ(back[1].pose.yaw, -2.5);
 }
 
 }  // namespace
