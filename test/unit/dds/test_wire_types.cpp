@@ -7,6 +7,7 @@
 
 #include <msg/ImuPubSubTypes.h>
 #include <msg/LaserScanPubSubTypes.h>
+#include <msg/KeyframePosesPubSubTypes.h>
 #include <msg/MapPointsPubSubTypes.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/OccupancyMapPubSubTypes.h>
@@ -110,6 +111,8 @@ TEST(WireTypes, MapPointsRoundTrips) {
   points.header(header(5));
   points.keyframe_index(5);
   points.sensor_origin(vector(1, 2, 1.6));
+  points.body_position(vector(1, 2, 1.5));
+  points.body_yaw(-0.75);
   for (int i = 0; i < 216; ++i) {
     Point32 p;
     p.x(float(i));
@@ -118,6 +121,19 @@ TEST(WireTypes, MapPointsRoundTrips) {
     points.points().push_back(p);
   }
   EXPECT_EQ(round_trip<MapPointsPubSubType>(points), points);
+}
+
+TEST(WireTypes, KeyframePosesRoundTrip) {
+  KeyframePoses poses;
+  poses.header(header(3));
+  for (std::uint32_t i = 0; i < 500; ++i) {
+    KeyframePose p;
+    p.keyframe_index(i);
+    p.position(vector(0.5 * i, -0.25 * i, 1.2));
+    p.yaw(0.01 * i);
+    poses.keyframes().push_back(p);
+  }
+  EXPECT_EQ(round_trip<KeyframePosesPubSubType>(poses), poses);
 }
 
 TEST(WireTypes, OccupancyMapRoundTripsAMegabyteTree) {
