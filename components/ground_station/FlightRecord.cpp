@@ -143,6 +143,12 @@ std::string FlightRecord::status_line() {
   return line;
 }
 
+void FlightRecord::set_keyframes(std::vector<Pose> keyframes) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  keyframes_ = std::move(keyframes);
+  ++corrections_;
+}
+
 nlohmann::json FlightRecord::summary() const {
   std::lock_guard<std::mutex> lock(mutex_);
   const double span = first_pose_at_ ? last_pose_at_ - *first_pose_at_ : 0.0;
@@ -165,6 +171,8 @@ nlohmann::json FlightRecord::summary() const {
                  {"occupied_cells", map_info_.occupied_cells},
                  {"map_points", map_info_.map_points},
                  {"resolution_m", map_info_.resolution}};
+  json["back_end"] = {{"corrections_received", corrections_},
+                      {"keyframes_corrected", keyframes_.size()}};
   json["files"] = files_;
   if (picture_) json["map_topdown"] = *picture_;
   return json;
@@ -175,11 +183,13 @@ std::vector<std::string> FlightRecord::write_outputs(const std::string& dir) {
   fs::create_directories(dir, error);
   if (error) throw io::file_error(dir, "cannot create directory: " + error.message());
   std::vector<Pose> poses;
+  std::vector<Pose> keyframes;
   std::vector<Arrival> arrivals;
   std::shared_ptr<const octomap::OcTree> map;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     poses = poses_;
+    keyframes = keyframes_;
     arrivals = arrivals_;
     map = map_;
   }
@@ -187,6 +197,10 @@ std::vector<std::string> FlightRecord::write_outputs(const std::string& dir) {
   std::vector<std::string> files{"trajectory.tum", "pose_arrivals.csv"};
   io::write_tum(path("trajectory.tum"), poses);
   write_arrivals(path("pose_arrivals.csv"), poses, arrivals);
+  if (!keyframes.empty()) {
+    io::write_tum(path("keyframes.tum"), keyframes);
+    files.push_back("keyframes.tum");
+  }
   if (map) {
     io::write_bt(path("map.bt"), *map);
     io::write_ply(path("map_occupied.ply"), io::occupied_cell_centres(*map));

@@ -51,6 +51,9 @@ class FlightRecord {
   void set_matcher_status(const MatcherCounters& counters);
   void set_map(std::shared_ptr<const octomap::OcTree> tree, const MapSnapshotInfo& info);
   void add_malformed_map();
+  // The matcher's back end moved the keyframes (`keyframe_poses`): each keyframe's scan stamp
+  // and corrected pose (yaw only), every keyframe made so far; the newest supersedes the rest.
+  void set_keyframes(std::vector<Pose> keyframes);
 
   // "gcs: 39.8 Hz pose, latency p50 0.9 ms p99 2.1 ms, degraded (degenerate), accepted 1234
   // rejected 3 skipped 0, map 54000 pts / 3120 occupied cells (snapshot 12)": rate and latency
@@ -61,7 +64,8 @@ class FlightRecord {
   nlohmann::json summary() const;
 
   // Writes into `dir` (created if missing): trajectory.tum, pose_arrivals.csv (when each pose
-  // arrived here, for link studies) and summary.json always; map.bt and
+  // arrived here, for link studies) and summary.json always; keyframes.tum (the keyframes where
+  // the back end's last correction put them) once one came; map.bt and
   // map_occupied.ply once a map arrived; map_topdown.png once a map or a pose did. Returns the
   // names written. Throws io::FileError naming the file that could not be written.
   std::vector<std::string> write_outputs(const std::string& dir);
@@ -90,6 +94,8 @@ class FlightRecord {
   MapSnapshotInfo map_info_;
   std::uint64_t maps_ = 0;
   std::uint64_t malformed_maps_ = 0;
+  std::vector<Pose> keyframes_;  // the newest correction's
+  std::uint64_t corrections_ = 0;
   // Where the previous status line left off.
   Clock::time_point line_time_ = Clock::now();
   std::size_t line_poses_ = 0;

@@ -1,6 +1,7 @@
 // ground_station: subscribes a vehicle's `pose`, `map` and `matcher_status` (and `scan`, for the
-// end-to-end latency), prints a live status line and, when stopped, writes the trajectory, the
-// map (.bt, occupied-cell PLY, top-down PNG with the flight path) and summary.json. It may join
+// end-to-end latency; `keyframe_poses`, the back end's corrections), prints a live status line
+// and, when stopped, writes the trajectory, the corrected keyframes, the map (.bt, occupied-cell
+// PLY, top-down PNG with the flight path) and summary.json. It may join
 // at any time: `map` and `matcher_status` are TRANSIENT_LOCAL, so it gets their latest samples.
 #include <chrono>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <memory>
 #include <thread>
 
+#include <msg/KeyframePosesPubSubTypes.h>
 #include <msg/LaserScanPubSubTypes.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/OccupancyMapPubSubTypes.h>
@@ -23,6 +25,7 @@
 #include "common/StopRequest.hpp"
 #include "dds/Conversions.hpp"
 #include "dds/DdsError.hpp"
+#include "dds/MatcherMessages.hpp"
 #include "dds/OccupancyMapConversions.hpp"
 #include "dds/Participant.hpp"
 #include "dds/Reader.hpp"
@@ -112,6 +115,10 @@ class GroundStation {
         participant_, dds::topic_name(vehicle_, dds::kMapTopic),
         node_.profile(dds::kMapTopic, "map_reader"),
         [this](const msg::OccupancyMap& m, const SampleInfo&) { on_map(m); });
+    keyframe_poses_ = std::make_unique<KeyframePosesReader>(
+        participant_, dds::topic_name(vehicle_, dds::kKeyframePosesTopic),
+        node_.profile(dds::kKeyframePosesTopic, "map_reader"),
+        [this](const msg::KeyframePoses& m, const SampleInfo&) { on_keyframe_poses(m); });
     status_ = std::make_unique<StatusReader>(
         participant_, dds::topic_name(vehicle_, dds::kMatcherStatusTopic),
         node_.profile(dds::kMatcherStatusTopic, "status_reader"),
@@ -136,6 +143,19 @@ class GroundStation {
       return;
     }
     record_.add_pose(dds::from_msg(m), m.scan_seq(), received_at);
+  }
+
+  // Called on the keyframe poses reader's thread.
+  void on_keyframe_poses(const msg::KeyframePoses& m) {
+    std::vector<Pose> keyframes;
+    for (const dds::KeyframePlacement& placed : dds::from_msg(m)) {
+      Pose p;
+      p.stamp = placed.stamp;
+      p.position = placed.pose.position;
+      p.orientation = Eigen::AngleAxisd(placed.pose.yaw, Vec3::UnitZ());
+      keyframes.push_back(p);
+    }
+    record_.set_keyframes(std::move(keyframes));
   }
 
   // Called on the map reader's thread: decoding a large snapshot holds up only later snapshots.
@@ -168,6 +188,7 @@ class GroundStation {
   void check_qos() const {
     process::throw_if_incompatible(*pose_);
     process::throw_if_incompatible(*map_);
+    process::throw_if_incompatible(*keyframe_poses_);
     process::throw_if_incompatible(*status_);
     if (scans_) process::throw_if_incompatible(*scans_);
   }
@@ -196,6 +217,7 @@ class GroundStation {
 
   using PoseReader = dds::Reader<msg::PoseWithCovarianceStampedPubSubType>;
   using MapReader = dds::Reader<msg::OccupancyMapPubSubType>;
+  using KeyframePosesReader = dds::Reader<msg::KeyframePosesPubSubType>;
   using StatusReader = dds::Reader<msg::MatcherStatusPubSubType>;
   using ScanReader = dds::Reader<msg::LaserScanPubSubType>;
 
@@ -206,6 +228,7 @@ class GroundStation {
   dds::Participant participant_;
   std::unique_ptr<PoseReader> pose_;
   std::unique_ptr<MapReader> map_;
+  std::unique_ptr<KeyframePosesReader> keyframe_poses_;
   std::unique_ptr<StatusReader> status_;
   std::unique_ptr<ScanReader> scans_;
 };

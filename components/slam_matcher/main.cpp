@@ -177,7 +177,8 @@ class MatcherNode {
     // goes out in the corrected frame.
     if (result.map_corrected) {
       keyframe_poses_.write(
-          dds::keyframe_poses_message(slam_.keyframe_poses(), scan.stamp, ++corrections_, source));
+          dds::keyframe_poses_message(slam_.keyframe_poses(), slam_.keyframe_stamps(), scan.stamp,
+                                      ++corrections_, source));
     }
     if (result.keyframe) map_points_.write(dds::keyframe_message(*result.keyframe, source));
     counts_.rejected += !result.report.accepted();

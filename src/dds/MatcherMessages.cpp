@@ -30,7 +30,8 @@ msg::MapPoints keyframe_message(const Keyframe& keyframe, const Source& source) 
   return to_msg(keyframe.points, keyframe.sensor_origin, keyframe.body, keyframe.index, source);
 }
 
-msg::KeyframePoses keyframe_poses_message(const std::vector<backend::NodePose>& poses, double stamp,
+msg::KeyframePoses keyframe_poses_message(const std::vector<backend::NodePose>& poses,
+                                          const std::vector<double>& stamps, double stamp,
                                           std::uint64_t correction, const Source& source) {
   msg::KeyframePoses m;
   m.header(make_header(stamp, correction, source));
@@ -38,6 +39,7 @@ msg::KeyframePoses keyframe_poses_message(const std::vector<backend::NodePose>& 
   for (std::size_t k = 0; k < poses.size(); ++k) {
     msg::KeyframePose p;
     p.keyframe_index(static_cast<std::uint32_t>(k));
+    p.stamp(to_msg_time(k < stamps.size() ? stamps[k] : 0.0));
     p.position(to_msg(poses[k].position));
     p.yaw(poses[k].yaw);
     m.keyframes().push_back(p);
@@ -49,7 +51,8 @@ std::vector<KeyframePlacement> from_msg(const msg::KeyframePoses& message) {
   std::vector<KeyframePlacement> placements;
   placements.reserve(message.keyframes().size());
   for (const msg::KeyframePose& p : message.keyframes()) {
-    placements.push_back({p.keyframe_index(), {from_msg(p.position()), p.yaw()}});
+    placements.push_back(
+        {p.keyframe_index(), from_msg_time(p.stamp()), {from_msg(p.position()), p.yaw()}});
   }
   return placements;
 }

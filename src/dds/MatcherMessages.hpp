@@ -35,10 +35,13 @@ msg::MapPoints keyframe_message(const Keyframe& keyframe, const Source& source);
 
 // The back end's keyframe poses after a correction (`keyframe_poses`), every keyframe made so
 // far in the map's current frame; the header's seq is the correction's number.
-msg::KeyframePoses keyframe_poses_message(const std::vector<backend::NodePose>& poses, double stamp,
+// stamps: each keyframe's scan's; stamp: the first scan whose pose is in the corrected frame.
+msg::KeyframePoses keyframe_poses_message(const std::vector<backend::NodePose>& poses,
+                                          const std::vector<double>& stamps, double stamp,
                                           std::uint64_t correction, const Source& source);
 struct KeyframePlacement {
   std::uint32_t index = 0;
+  double stamp = 0.0;
   backend::NodePose pose;
 };
 std::vector<KeyframePlacement> from_msg(const msg::KeyframePoses& message);

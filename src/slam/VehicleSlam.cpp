@@ -119,6 +119,7 @@ void VehicleSlam::add_to_graph(const ScanReport& report) {
   const std::size_t first = map.size() - report.added_points.size();
   keyframe_starts_.push_back(first);
   keyframe_poses_.push_back(node_of(report.pose));
+  keyframe_stamps_.push_back(report.pose.stamp);
   GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_};
   if (!map.normals().empty()) {
     keyframe.normals.assign(map.normals().begin() + static_cast<std::ptrdiff_t>(first),

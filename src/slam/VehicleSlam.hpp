@@ -101,6 +101,7 @@ class VehicleSlam {
   // With the back end: every keyframe's pose in the map's current frame (the graph's where it
   // has them); what consumers of the keyframes move their points to after a correction.
   const std::vector<backend::NodePose>& keyframe_poses() const { return keyframe_poses_; }
+  const std::vector<double>& keyframe_stamps() const { return keyframe_stamps_; }  // likewise
 
   // The back end's loop counts (none unless loop_closure.enabled).
   std::optional<backend::LoopCounts> loops() const;
@@ -137,6 +138,7 @@ class VehicleSlam {
   std::size_t frame_ = 0;                          // the back end's updates applied
   std::vector<std::size_t> keyframe_starts_;       // each keyframe's first point in the map
   std::vector<backend::NodePose> keyframe_poses_;  // in the map's current frame
+  std::vector<double> keyframe_stamps_;
   std::vector<backend::NodePose> final_poses_;     // the graph's after finish()
   std::size_t keyframes_ = 0;
   double cloud_seconds_ = 0.0;

@@ -14,6 +14,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <msg/LaserScanPubSubTypes.h>
+#include <nlohmann/json.hpp>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
 
@@ -27,6 +28,7 @@
 #include "dds/Writer.hpp"
 #include "eval/TrajectoryMetrics.hpp"
 #include "io/ScenarioFile.hpp"
+#include "io/TumFile.hpp"
 #include "sim/FlightSimulator.hpp"
 
 namespace uavslam {
@@ -48,6 +50,7 @@ struct FlightOverDds {
   std::vector<msg::MatcherStatus> statuses;
   std::string matcher_log;
   std::string map_server_log;  // with_map_server only
+  std::string ground_station_out;  // likewise: where the ground station wrote its files
   double ate_horizontal = 0.0;
 };
 
@@ -56,8 +59,8 @@ class DdsPipeline : public test::ProcessTest {
   // The matcher's readers match the ground's first, then the sensors start on a shared timeline;
   // the flight ends when the status of its last scan (`last_scan`) comes, or the matcher goes
   // quiet.
-  // slam_config: the matcher's (default config/slam.yaml); with_map_server: a map server runs
-  // beside it.
+  // slam_config: the matcher's (default config/slam.yaml); with_map_server: a map server and a
+  // ground station run beside it.
   FlightOverDds fly_over_dds(const std::string& scenario, int domain, const std::string& label,
                              std::uint64_t last_scan, const std::string& slam_config = "",
                              bool with_map_server = false);
@@ -160,9 +163,14 @@ FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
       });
 
   std::optional<process::ChildProcess> map_server;
+  std::optional<process::ChildProcess> station;
   if (with_map_server) {
     map_server.emplace(node("map_server", {"--publish-period", "0.5"}, domain),
                        log_path("map_server_" + label));
+    flight.ground_station_out = path("ground_station_" + label);
+    station.emplace(
+        node("ground_station", {"--quiet", "--out", flight.ground_station_out}, domain),
+        log_path("ground_station_" + label));
   }
   process::ChildProcess matcher(
       node("slam_matcher",
@@ -194,6 +202,9 @@ FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
     EXPECT_EQ(map_server->stop(10s), 0) << map_server->log();
     flight.map_server_log = map_server->log();
     std::cerr << flight.map_server_log;
+  }
+  if (station) {
+    EXPECT_EQ(station->stop(20s), 0) << station->log();
   }
 
   std::lock_guard<std::mutex> lock(mutex);
@@ -277,6 +288,14 @@ TEST_F(DdsPipeline, TheBackEndsCorrectionsReachTheMapServer) {
   EXPECT_LE(std::stoi(m[1]), published);
   EXPECT_GE(flight.poses.size(), 6500u) << "of 7201 scans";
   EXPECT_LT(flight.ate_horizontal, 0.25);
+
+  // The ground station heard the corrections too and wrote where the keyframes now are.
+  std::ifstream summary_file(flight.ground_station_out + "/summary.json");
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  EXPECT_GE(summary["back_end"]["corrections_received"].get<int>(), 1);
+  const std::vector<Pose> keyframes = io::read_tum(flight.ground_station_out + "/keyframes.tum");
+  EXPECT_EQ(keyframes.size(), summary["back_end"]["keyframes_corrected"].get<std::size_t>());
+  EXPECT_GT(keyframes.size(), 100u);
 }
 
 TEST_F(DdsPipeline, TheAutopilotsVelocityOnTheWireCarriesTheCorridor) {

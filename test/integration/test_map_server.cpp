@@ -232,7 +232,7 @@ TEST_F(MapServerProcess, TheBackEndsCorrectionMovesTheKeyframesAndTheMapIsRebuil
   std::vector<backend::NodePose> poses(8, backend::NodePose{body, 0.0});
   poses[0].position += Vec3(0.5, 0.0, 0.0);
   poses[7].position += Vec3(0.0, -0.5, 0.0);
-  ASSERT_TRUE(corrections.write(dds::keyframe_poses_message(poses, 104.0, 1, {"map", "uav1"})));
+  ASSERT_TRUE(corrections.write(dds::keyframe_poses_message(poses, {}, 104.0, 1, {"map", "uav1"})));
   const auto after = inbox.wait_for(
       [&](const msg::OccupancyMap& m) { return occupied(*dds::octree_from_msg(m), moved_wall); },
       30s);

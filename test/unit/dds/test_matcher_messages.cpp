@@ -106,13 +106,15 @@ TEST(MatcherMessages, ThePoseCarriesTheCovariance) {
 TEST(MatcherMessages, KeyframePosesRoundTrip) {
   const std::vector<backend::NodePose> poses = {{Vec3(0.0, 0.0, 0.3), 0.0},
                                                 {Vec3(1.5, -2.0, 1.2), -2.5}};
-  const msg::KeyframePoses m = keyframe_poses_message(poses, 30.25, 3, {"map", "uav1"});
+  const msg::KeyframePoses m =
+      keyframe_poses_message(poses, {10.5, 20.75}, 30.25, 3, {"map", "uav1"});
   EXPECT_EQ(m.header().seq(), 3u);
   EXPECT_EQ(m.header().vehicle_id(), "uav1");
   EXPECT_DOUBLE_EQ(from_msg_time(m.header().stamp()), 30.25);
   const std::vector<KeyframePlacement> back = from_msg(m);
   ASSERT_EQ(back.size(), 2u);
   EXPECT_EQ(back[1].index, 1u);
+  EXPECT_DOUBLE_EQ(back[1].stamp, 20.75);
   EXPECT_EQ(back[1].pose.position, poses[1].position);
   EXPECT_EQ(back[1].pose.yaw, -2.5);
 }
