@@ -64,9 +64,10 @@ void VehicleSlam::scan_posed(const ScanReport& report) {
 // the seed); a scan that got a pose is the next motion's start.
 VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_before) {
   VehicleScan result;
-  // The back end's thread may have moved the map since the last scan.
-  if (graph_) result.map_corrected = apply_graph_update();
+  // The back end's thread may have moved the map since the last scan: the scan waits for the
+  // rebuild, so it counts in the scan's time.
   const auto started = Clock::now();
+  if (graph_) result.map_corrected = apply_graph_update();
   result.report = pipeline_.process_scan(scan, predicted_motion(scan.stamp));
   if (result.posed()) scan_posed(result.report);
   result.pipeline_seconds = seconds_since(started);
@@ -80,7 +81,12 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
     }
     result.anchor = ScanAnchor{keyframes_ - (result.report.map_updated ? 0 : 1), offset};
   }
-  if (graph_) result.map_corrected = apply_graph_update() || result.map_corrected;
+  if (graph_) {
+    // Inline, the update the keyframe just made: the back end's time.
+    const auto applying = Clock::now();
+    result.map_corrected = apply_graph_update() || result.map_corrected;
+    inline_update_seconds_ += seconds_since(applying);
+  }
   if (result.report.map_updated) result.keyframe = keyframe_of(scan, result.report);
   if (result.posed()) add_dense(scan, result.report, result.keyframe ? &*result.keyframe : nullptr);
   return result;
@@ -164,13 +170,15 @@ std::optional<backend::LoopCounts> VehicleSlam::loops() const {
 }
 
 double VehicleSlam::backend_seconds() const {
-  return graph_ ? graph_->seconds() : 0.0;
+  return graph_ ? graph_->seconds() + inline_update_seconds_ : 0.0;
 }
 
 bool VehicleSlam::finish() {
   if (!graph_ || keyframes_ == 0) return false;
   graph_->finish();
+  const auto applying = Clock::now();
   apply_graph_update();
+  inline_update_seconds_ += seconds_since(applying);
   final_poses_ = graph_->poses();
   return true;
 }

@@ -117,7 +117,8 @@ class VehicleSlam {
   std::unique_ptr<DenseCloud> take_cloud() { return std::move(cloud_); }
   std::unique_ptr<OccupancyOctree> take_occupancy() { return std::move(occupancy_); }
   double cloud_seconds() const { return cloud_seconds_; }
-  double backend_seconds() const;  // the graph: searching loops, optimising
+  // The graph's: searching loops, optimising, and (inline) rebuilding the map after it moved.
+  double backend_seconds() const;
   double occupancy_seconds() const { return occupancy_seconds_; }
 
  private:
@@ -139,7 +140,8 @@ class VehicleSlam {
   std::vector<std::size_t> keyframe_starts_;       // each keyframe's first point in the map
   std::vector<backend::NodePose> keyframe_poses_;  // in the map's current frame
   std::vector<double> keyframe_stamps_;
-  std::vector<backend::NodePose> final_poses_;     // the graph's after finish()
+  std::vector<backend::NodePose> final_poses_;  // the graph's after finish()
+  double inline_update_seconds_ = 0.0;          // rebuilding the map after an inline update
   std::size_t keyframes_ = 0;
   double cloud_seconds_ = 0.0;
   double occupancy_seconds_ = 0.0;
