@@ -16,6 +16,7 @@
 #include <Eigen/Geometry>
 
 #include "backend/CorrelativeMatcher.hpp"
+#include "unit/backend/Walls2d.hpp"
 
 namespace uavslam::bench {
 namespace {
@@ -24,21 +25,11 @@ using backend::CorrelativeMatch;
 using backend::CorrelativeMatcher;
 using backend::CorrelativeMatcherConfig;
 using backend::SearchWindow;
-using Points2 = std::vector<Eigen::Vector2d>;
+using backend::test::add_box;
+using backend::test::add_wall;
+using backend::test::Points2;
 
 constexpr double kMinScore = 0.55;  // KeyframeGraph's default
-
-void add_wall(Points2& points, Eigen::Vector2d a, Eigen::Vector2d b, double spacing = 0.025) {
-  const int n = static_cast<int>(std::ceil((b - a).norm() / spacing));
-  for (int i = 0; i <= n; ++i) points.push_back(a + (b - a) * (static_cast<double>(i) / n));
-}
-
-void add_box(Points2& points, Eigen::Vector2d lo, Eigen::Vector2d hi) {
-  add_wall(points, lo, {hi.x(), lo.y()});
-  add_wall(points, {hi.x(), lo.y()}, hi);
-  add_wall(points, hi, {lo.x(), hi.y()});
-  add_wall(points, {lo.x(), hi.y()}, lo);
-}
 
 // A 20 m x 15 m room with partitions and boxes placed without symmetry.
 Points2 room() {

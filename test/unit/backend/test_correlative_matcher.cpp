@@ -7,24 +7,14 @@
 #include <Eigen/Geometry>
 
 #include "backend/CorrelativeMatcher.hpp"
+#include "unit/backend/Walls2d.hpp"
 
 namespace uavslam::backend {
 namespace {
 
-using Points2 = std::vector<Eigen::Vector2d>;
-
-// Points every `spacing` along the segment from a to b.
-void add_wall(Points2& points, Eigen::Vector2d a, Eigen::Vector2d b, double spacing = 0.025) {
-  const int n = static_cast<int>(std::ceil((b - a).norm() / spacing));
-  for (int i = 0; i <= n; ++i) points.push_back(a + (b - a) * (static_cast<double>(i) / n));
-}
-
-void add_box(Points2& points, Eigen::Vector2d lo, Eigen::Vector2d hi) {
-  add_wall(points, lo, {hi.x(), lo.y()});
-  add_wall(points, {hi.x(), lo.y()}, hi);
-  add_wall(points, hi, {lo.x(), hi.y()});
-  add_wall(points, {lo.x(), hi.y()}, lo);
-}
+using test::add_box;
+using test::add_wall;
+using test::Points2;
 
 // A 10 m x 7 m room with a partition and boxes placed without symmetry; its frame's origin is
 // off the grid's lines so no point sits on a cell boundary.

@@ -16,6 +16,17 @@ Eigen::Matrix4d information(double sigma_position, double sigma_yaw) {
   return variances.cwiseInverse().asDiagonal();
 }
 
+// A loop from node `from` to node `to` measuring what the truth says of `seen_from` and `seen`
+// (the true loop: the same nodes), with the confidence of a good match.
+Constraint loop(std::size_t from, std::size_t to, const NodePose& seen_from, const NodePose& seen) {
+  Constraint c = relative(seen_from, seen);
+  c.from = from;
+  c.to = to;
+  c.kind = ConstraintKind::Loop;
+  c.information = information(0.02, 0.01);
+  return c;
+}
+
 // A square flight of four 10 m legs at 1 m steps, turning 90 degrees at each corner, back
 // where it started: the last node is the first place again.
 std::vector<NodePose> square_flight() {
@@ -91,12 +102,7 @@ TEST(PoseGraphTest, ClosingTheLoopRemovesTheDrift) {
   const double drifted = position_error(graph, truth);
   ASSERT_GT(drifted, 1.0) << "the chain must have drifted for the test to mean anything";
 
-  Constraint loop = relative(truth[truth.size() - 1], truth[0]);
-  loop.from = truth.size() - 1;
-  loop.to = 0;
-  loop.kind = ConstraintKind::Loop;
-  loop.information = information(0.02, 0.01);
-  graph.add_constraint(loop);
+  graph.add_constraint(loop(truth.size() - 1, 0, truth.back(), truth[0]));
   const OptimisationReport report = graph.optimise();
 
   EXPECT_EQ(report.loops_active, 1u);
@@ -115,12 +121,8 @@ TEST(PoseGraphTest, AFalseLoopDoesNotBendTheMap) {
   const std::vector<NodePose> before = graph.nodes();
   // Node 15 (middle of the second leg) claimed to be where node 35 is, 10 m away, with the
   // confidence of a good match: a look-alike corridor.
-  Constraint wrong = relative(truth[35], truth[15]);
-  wrong.from = 35;
-  wrong.to = 5;  // the measurement of node 15's place, given to node 5
-  wrong.kind = ConstraintKind::Loop;
-  wrong.information = information(0.02, 0.01);
-  graph.add_constraint(wrong);
+  // The measurement of node 15's place, given to node 5.
+  graph.add_constraint(loop(35, 5, truth[35], truth[15]));
   const OptimisationReport report = graph.optimise();
 
   EXPECT_EQ(report.loops_rejected, 1u);
@@ -136,12 +138,8 @@ TEST(PoseGraphTest, ALookAlikeOneDoorAlongIsSwitchedOff) {
   const std::vector<NodePose> truth = square_flight();
   PoseGraph graph = drifted_chain(truth, 0.0);
   const std::vector<NodePose> before = graph.nodes();
-  Constraint wrong = relative(truth[35], truth[5]);
+  Constraint wrong = loop(35, 5, truth[35], truth[5]);
   wrong.translation += Vec3(1.0, 0.0, 0.0);
-  wrong.from = 35;
-  wrong.to = 5;
-  wrong.kind = ConstraintKind::Loop;
-  wrong.information = information(0.02, 0.01);
   graph.add_constraint(wrong);
   const OptimisationReport report = graph.optimise();
 
@@ -155,18 +153,8 @@ TEST(PoseGraphTest, ATrueLoopSurvivesBesideAFalseOne) {
   const std::vector<NodePose> truth = square_flight();
   PoseGraph graph = drifted_chain(truth, 0.004);
   const double drifted = position_error(graph, truth);
-  Constraint loop = relative(truth.back(), truth[0]);
-  loop.from = truth.size() - 1;
-  loop.to = 0;
-  loop.kind = ConstraintKind::Loop;
-  loop.information = information(0.02, 0.01);
-  graph.add_constraint(loop);
-  Constraint wrong = relative(truth[30], truth[10]);
-  wrong.from = 20;
-  wrong.to = 10;
-  wrong.kind = ConstraintKind::Loop;
-  wrong.information = information(0.02, 0.01);
-  graph.add_constraint(wrong);
+  graph.add_constraint(loop(truth.size() - 1, 0, truth.back(), truth[0]));
+  graph.add_constraint(loop(20, 10, truth[30], truth[10]));  // node 30's place, given to 20
   const OptimisationReport report = graph.optimise();
 
   EXPECT_EQ(report.loops_active, 1u);
