@@ -1,5 +1,6 @@
 #include "FlightRecord.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -143,10 +144,9 @@ std::string FlightRecord::status_line() {
   return line;
 }
 
-void FlightRecord::set_keyframes(std::vector<Pose> keyframes) {
+void FlightRecord::add_correction(backend::StampedKeyframes correction) {
   std::lock_guard<std::mutex> lock(mutex_);
-  keyframes_ = std::move(keyframes);
-  ++corrections_;
+  corrections_.push_back(std::move(correction));
 }
 
 nlohmann::json FlightRecord::summary() const {
@@ -171,8 +171,9 @@ nlohmann::json FlightRecord::summary() const {
                  {"occupied_cells", map_info_.occupied_cells},
                  {"map_points", map_info_.map_points},
                  {"resolution_m", map_info_.resolution}};
-  json["back_end"] = {{"corrections_received", corrections_},
-                      {"keyframes_corrected", keyframes_.size()}};
+  json["back_end"] = {
+      {"corrections_received", corrections_.size()},
+      {"keyframes_corrected", corrections_.empty() ? 0 : corrections_.back().keyframes.size()}};
   json["files"] = files_;
   if (picture_) json["map_topdown"] = *picture_;
   return json;
@@ -183,13 +184,13 @@ std::vector<std::string> FlightRecord::write_outputs(const std::string& dir) {
   fs::create_directories(dir, error);
   if (error) throw io::file_error(dir, "cannot create directory: " + error.message());
   std::vector<Pose> poses;
-  std::vector<Pose> keyframes;
+  std::vector<backend::StampedKeyframes> corrections;
   std::vector<Arrival> arrivals;
   std::shared_ptr<const octomap::OcTree> map;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     poses = poses_;
-    keyframes = keyframes_;
+    corrections = corrections_;
     arrivals = arrivals_;
     map = map_;
   }
@@ -197,9 +198,16 @@ std::vector<std::string> FlightRecord::write_outputs(const std::string& dir) {
   std::vector<std::string> files{"trajectory.tum", "pose_arrivals.csv"};
   io::write_tum(path("trajectory.tum"), poses);
   write_arrivals(path("pose_arrivals.csv"), poses, arrivals);
-  if (!keyframes.empty()) {
-    io::write_tum(path("keyframes.tum"), keyframes);
-    files.push_back("keyframes.tum");
+  if (!corrections.empty()) {
+    // In the order of the poses they apply from (DDS may deliver two out of order).
+    const auto by_stamp = [](const auto& a, const auto& b) { return a.stamp < b.stamp; };
+    std::stable_sort(corrections.begin(), corrections.end(), by_stamp);
+    std::vector<Pose> by_time = poses;
+    std::stable_sort(by_time.begin(), by_time.end(), by_stamp);
+    io::write_tum(path("keyframes.tum"), corrections.back().keyframes);
+    io::write_tum(path("trajectory_corrected.tum"),
+                  backend::corrected_trajectory(by_time, corrections));
+    files.insert(files.end(), {"keyframes.tum", "trajectory_corrected.tum"});
   }
   if (map) {
     io::write_bt(path("map.bt"), *map);

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ScanPoseLatency.hpp"
+#include "backend/TrajectoryCorrection.hpp"
 #include "core/Types.hpp"
 
 namespace uavslam::ground_station {
@@ -52,8 +53,8 @@ class FlightRecord {
   void set_map(std::shared_ptr<const octomap::OcTree> tree, const MapSnapshotInfo& info);
   void add_malformed_map();
   // The matcher's back end moved the keyframes (`keyframe_poses`): each keyframe's scan stamp
-  // and corrected pose (yaw only), every keyframe made so far; the newest supersedes the rest.
-  void set_keyframes(std::vector<Pose> keyframes);
+  // and corrected pose (yaw only), every keyframe made so far, from the stamped scan on.
+  void add_correction(backend::StampedKeyframes correction);
 
   // "gcs: 39.8 Hz pose, latency p50 0.9 ms p99 2.1 ms, degraded (degenerate), accepted 1234
   // rejected 3 skipped 0, map 54000 pts / 3120 occupied cells (snapshot 12)": rate and latency
@@ -64,8 +65,9 @@ class FlightRecord {
   nlohmann::json summary() const;
 
   // Writes into `dir` (created if missing): trajectory.tum, pose_arrivals.csv (when each pose
-  // arrived here, for link studies) and summary.json always; keyframes.tum (the keyframes where
-  // the back end's last correction put them) once one came; map.bt and
+  // arrived here, for link studies) and summary.json always; once a correction came,
+  // keyframes.tum (the keyframes where the last one put them) and trajectory_corrected.tum (each
+  // pose moved with its keyframe, backend/TrajectoryCorrection); map.bt and
   // map_occupied.ply once a map arrived; map_topdown.png once a map or a pose did. Returns the
   // names written. Throws io::FileError naming the file that could not be written.
   std::vector<std::string> write_outputs(const std::string& dir);
@@ -94,8 +96,7 @@ class FlightRecord {
   MapSnapshotInfo map_info_;
   std::uint64_t maps_ = 0;
   std::uint64_t malformed_maps_ = 0;
-  std::vector<Pose> keyframes_;  // the newest correction's
-  std::uint64_t corrections_ = 0;
+  std::vector<backend::StampedKeyframes> corrections_;
   // Where the previous status line left off.
   Clock::time_point line_time_ = Clock::now();
   std::size_t line_poses_ = 0;

@@ -147,15 +147,16 @@ class GroundStation {
 
   // Called on the keyframe poses reader's thread.
   void on_keyframe_poses(const msg::KeyframePoses& m) {
-    std::vector<Pose> keyframes;
+    backend::StampedKeyframes correction;
+    correction.stamp = dds::from_msg_time(m.header().stamp());
     for (const dds::KeyframePlacement& placed : dds::from_msg(m)) {
       Pose p;
       p.stamp = placed.stamp;
       p.position = placed.pose.position;
       p.orientation = Eigen::AngleAxisd(placed.pose.yaw, Vec3::UnitZ());
-      keyframes.push_back(p);
+      correction.keyframes.push_back(p);
     }
-    record_.set_keyframes(std::move(keyframes));
+    record_.add_correction(std::move(correction));
   }
 
   // Called on the map reader's thread: decoding a large snapshot holds up only later snapshots.

@@ -14,9 +14,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <msg/LaserScanPubSubTypes.h>
-#include <nlohmann/json.hpp>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <nlohmann/json.hpp>
 
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
@@ -49,7 +49,7 @@ struct FlightOverDds {
   std::vector<msg::PoseWithCovarianceStamped> poses;
   std::vector<msg::MatcherStatus> statuses;
   std::string matcher_log;
-  std::string map_server_log;  // with_map_server only
+  std::string map_server_log;      // with_map_server only
   std::string ground_station_out;  // likewise: where the ground station wrote its files
   double ate_horizontal = 0.0;
 };
@@ -168,9 +168,8 @@ FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
     map_server.emplace(node("map_server", {"--publish-period", "0.5"}, domain),
                        log_path("map_server_" + label));
     flight.ground_station_out = path("ground_station_" + label);
-    station.emplace(
-        node("ground_station", {"--quiet", "--out", flight.ground_station_out}, domain),
-        log_path("ground_station_" + label));
+    station.emplace(node("ground_station", {"--quiet", "--out", flight.ground_station_out}, domain),
+                    log_path("ground_station_" + label));
   }
   process::ChildProcess matcher(
       node("slam_matcher",
@@ -296,6 +295,17 @@ TEST_F(DdsPipeline, TheBackEndsCorrectionsReachTheMapServer) {
   const std::vector<Pose> keyframes = io::read_tum(flight.ground_station_out + "/keyframes.tum");
   EXPECT_EQ(keyframes.size(), summary["back_end"]["keyframes_corrected"].get<std::size_t>());
   EXPECT_GT(keyframes.size(), 100u);
+  // And each pose where the final graph puts its keyframe: closer to the truth than as flown.
+  const std::vector<Pose> corrected =
+      io::read_tum(flight.ground_station_out + "/trajectory_corrected.tum");
+  ASSERT_GE(corrected.size(), 6500u);
+  sim::FlightSimulator truth(
+      io::load_scenario(std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/yaw_drift.yaml"));
+  std::vector<Pose> ground_truth;
+  for (const Pose& p : corrected) ground_truth.push_back(truth.ground_truth_at(p.stamp));
+  const double after = eval::compare_trajectories(corrected, ground_truth).ate_horizontal_rmse;
+  std::cerr << "ground station: corrected trajectory ATE horizontal " << after << " m\n";
+  EXPECT_LT(after, flight.ate_horizontal);
 }
 
 TEST_F(DdsPipeline, TheAutopilotsVelocityOnTheWireCarriesTheCorridor) {
