@@ -24,5 +24,11 @@ void add_offline_command(CLI::App& app, int& exit_code);
 void add_slam_config_options(CLI::App& cmd, std::string& config,
                              std::vector<std::string>& overrides, const std::string& config_help);
 SlamConfig load_config(const std::string& path, const std::vector<std::string>& overrides);
+// A configuration shipped in config/ (e.g. "slam_2d_logs.yaml"): the installed one beside bin/,
+// else the source tree's.
+std::string shipped_config(const std::string& name);
+// The configuration for a CARMEN log when none is given: the real 2D logs' one (the seed's mode
+// is `--config config/seed.yaml`).
+inline constexpr char kLogsConfig[] = "slam_2d_logs.yaml";
 
 }  // namespace uavslam::cli

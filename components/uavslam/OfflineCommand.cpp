@@ -245,7 +245,10 @@ void print_report(std::ostream& out, const nlohmann::json& r) {
 }
 
 int run_offline(const OfflineOptions& o) {
-  const SlamConfig config = load_config(o.config, o.overrides);
+  // A CARMEN log with no --config: the configuration made for real 2D logs, as `uavslam run`.
+  const std::string config_path =
+      o.config.empty() && !o.carmen.empty() ? shipped_config(kLogsConfig) : o.config;
+  const SlamConfig config = load_config(config_path, o.overrides);
   if (!o.quiet) {
     std::cerr << "uavslam offline: reading "
               << (!o.log.empty()     ? o.log
@@ -322,8 +325,8 @@ void add_offline_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", options->out, "output folder (created)")->required();
   add_slam_config_options(*cmd, options->config, options->overrides,
                           "SLAM parameters YAML of the real-time pass; the offline pass uses it "
-                          "with every point and the exact index (default: config/slam.yaml's "
-                          "defaults; config/slam_2d_logs.yaml for CARMEN logs)");
+                          "with every point and the exact index (default: the built-in "
+                          "defaults, the seed's; for --carmen config/slam_2d_logs.yaml)");
   cmd->add_option("--voxel", options->voxel,
                   "edge of the dense cloud's voxel filter in m: one point (the centroid) per "
                   "voxel; 0 keeps every point (default 0.01)")

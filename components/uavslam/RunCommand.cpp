@@ -106,7 +106,13 @@ void write_outputs(const std::filesystem::path& out, const PassResult& run,
 
 int run_log(const RunOptions& o) {
   PassOptions options;
-  options.config = load_config(o.config, o.overrides);
+  // No --config: the configuration made for real 2D logs, not the seed's (one flag away).
+  const std::string config_path = o.config.empty() ? shipped_config(kLogsConfig) : o.config;
+  if (!o.quiet && o.config.empty()) {
+    std::cerr << "uavslam run: SLAM config " << config_path
+              << " (the default for 2D logs; --config config/seed.yaml for the seed's mode)\n";
+  }
+  options.config = load_config(config_path, o.overrides);
   std::unique_ptr<LogInput> input = open_carmen_input(o.carmen, o.jitter);
   std::optional<ProgressBar> bar;
   if (!o.quiet) bar.emplace("SLAM", input->expected_scans(), "scans", std::cerr, isatty(2) != 0);
@@ -135,8 +141,8 @@ void add_run_command(CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--out", options->out, "output folder (created)")->required();
   add_slam_config_options(*cmd, options->config, options->overrides,
-                          "SLAM parameters YAML (e.g. config/slam_2d_logs.yaml; default: the "
-                          "built-in defaults: the seed, as in config/seed.yaml)");
+                          "SLAM parameters YAML (default: config/slam_2d_logs.yaml, made for real "
+                          "2D logs; config/seed.yaml: the seed's mode)");
   cmd->add_flag("--quiet", options->quiet, "no progress on stderr");
   cmd->add_option("--heading-jitter", options->jitter.amplitude,
                   "robustness probe: add a pseudo-random heading offset, uniform in +-RAD, to each "

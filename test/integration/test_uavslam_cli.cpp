@@ -463,6 +463,25 @@ TEST_F(UavslamCli, RunTracksACarmenLogInFileOrder) {
   EXPECT_FALSE(uavslam::io::read_ply((out / "map.ply").string()).empty());
 }
 
+// A newcomer's `uavslam run --carmen LOG` with no --config gets the configuration made for real
+// 2D logs (odometry prior, yaw in every scan, the back end), and the seed's mode is one flag away.
+TEST_F(UavslamCli, RunWithoutAConfigUsesTheRealLogsConfig) {
+  std::string log;
+  for (int i = 0; i < 6; ++i)
+    log += square_room_flaser(-1.0 + 0.1 * i, 0.5, 0.02 * i, 100.0 + 0.1 * i);
+  const std::string path = write("room.clf", log);
+  const CommandResult plain = run("run --carmen " + path + " --out " + (dir / "plain").string());
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_THAT(plain.output, HasSubstr("config/slam_2d_logs.yaml (the default for 2D logs"));
+  std::ifstream plain_json(dir / "plain" / "summary.json");
+  EXPECT_TRUE(nlohmann::json::parse(plain_json).contains("loops")) << "the back end is on";
+  const CommandResult seed = run("run --quiet --carmen " + path + " --config " +
+                                 source("config/seed.yaml") + " --out " + (dir / "seed").string());
+  ASSERT_EQ(seed.exit_code, 0) << seed.output;
+  std::ifstream seed_json(dir / "seed" / "summary.json");
+  EXPECT_FALSE(nlohmann::json::parse(seed_json).contains("loops"));
+}
+
 // The scans' own alignment of each relation: an exact relation scores 0, one 0.1 m off scores
 // 0.1 m (the scans show the true motion), one naming a scan the log lacks is unmatched.
 TEST_F(UavslamCli, EvalScansScoresTheRelationsAgainstTheScansOwnAlignment) {
