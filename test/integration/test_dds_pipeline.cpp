@@ -59,11 +59,9 @@ class DdsPipeline : public test::ProcessTest {
   // The matcher's readers match the ground's first, then the sensors start on a shared timeline;
   // the flight ends when the status of its last scan (`last_scan`) comes, or the matcher goes
   // quiet.
-  // slam_config: the matcher's (default config/slam.yaml); with_map_server: a map server and a
-  // ground station run beside it.
+  // with_map_server: a map server and a ground station run beside the matcher.
   FlightOverDds fly_over_dds(const std::string& scenario, int domain, const std::string& label,
-                             std::uint64_t last_scan, const std::string& slam_config = "",
-                             bool with_map_server = false);
+                             std::uint64_t last_scan, bool with_map_server = false);
 
   // A process of this test: on its own domain, for vehicle uav1.
   static std::vector<std::string> node(const char* name, std::vector<std::string> extra,
@@ -139,7 +137,7 @@ TEST_F(DdsPipeline, ThreeProcessesTrackTheShortFlight) {
 
 FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
                                         const std::string& label, std::uint64_t last_scan,
-                                        const std::string& slam_config, bool with_map_server) {
+                                        bool with_map_server) {
   FlightOverDds flight;
   dds::Participant ground(domain, dds::default_profiles_path(), "uavslam_loopback", "test");
   std::mutex mutex;
@@ -171,13 +169,11 @@ FlightOverDds DdsPipeline::fly_over_dds(const std::string& scenario, int domain,
     station.emplace(node("ground_station", {"--quiet", "--out", flight.ground_station_out}, domain),
                     log_path("ground_station_" + label));
   }
-  process::ChildProcess matcher(
-      node("slam_matcher",
-           {"--sensor", scenario, "--slam-config",
-            slam_config.empty() ? std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml"
-                                : slam_config},
-           domain),
-      log_path("slam_matcher_" + label));
+  process::ChildProcess matcher(node("slam_matcher",
+                                     {"--sensor", scenario, "--slam-config",
+                                      std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml"},
+                                     domain),
+                                log_path("slam_matcher_" + label));
   EXPECT_TRUE(matcher.started());
   EXPECT_TRUE(pose_reader.wait_for_matched(1, 30s)) << matcher.log();
   EXPECT_TRUE(status_reader.wait_for_matched(1, 30s)) << matcher.log();
@@ -261,18 +257,13 @@ TEST_F(DdsPipeline, ThePlainCorridorsBlindAxisIsOnTheWire) {
 // (flow_corridor.yaml): imu_bridge publishes `velocity` beside `imu`, the matcher fuses it (the
 // shipped config's motion.fuse_velocity), and the vehicle is carried down the corridor where the
 // IMU alone ends metres off (uavslam simulate: 3.3 m).
-// The drifting IMU's flight (yaw_drift.yaml, 180 s at 4x) with the back end on: the matcher
+// The drifting IMU's flight (yaw_drift.yaml, 180 s at 4x) with the shipped back end: the matcher
 // closes loops on its own thread and publishes each correction (`keyframe_poses`), and the map
 // server moves its keyframes and rebuilds its map with every one.
 TEST_F(DdsPipeline, TheBackEndsCorrectionsReachTheMapServer) {
-  const std::string config = path("slam_loops.yaml");
-  {
-    std::ifstream shipped(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
-    std::ofstream(config) << shipped.rdbuf() << "\nloop_closure:\n  enabled: true\n";
-  }
   const FlightOverDds flight =
       fly_over_dds(std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/yaw_drift.yaml",
-                   kLoopDomain, "loops", 7200, config, true);
+                   kLoopDomain, "loops", 7200, true);
   ASSERT_FALSE(HasFailure());
   static const std::regex loops(R"(loops: (\d+) accepted[^;]*; (\d+) corrections published)");
   std::smatch m;

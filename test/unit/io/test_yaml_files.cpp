@@ -349,7 +349,8 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
 }
 
 // The UAV's configuration is the seed's plus the motion model, the degeneracy analysis, the
-// seed's own suggestion of a periodic heading check and the gate on the motion prior.
+// seed's own suggestion of a periodic heading check, the gate on the motion prior and the back
+// end.
 TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingCheckAndGate) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
   EXPECT_EQ(config.icp.motion_prior, MotionPrior::Imu);
@@ -357,6 +358,8 @@ TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingC
   EXPECT_EQ(config.icp.heading, HeadingMode::PeriodicCheck);
   EXPECT_GT(config.icp.prior_gate, 0.0);
   EXPECT_TRUE(config.motion.fuse_velocity);
+  EXPECT_TRUE(config.loop_closure.enabled);
+  config.loop_closure.enabled = SlamConfig{}.loop_closure.enabled;
   config.icp.motion_prior = SlamConfig{}.icp.motion_prior;
   config.motion.fuse_velocity = SlamConfig{}.motion.fuse_velocity;
   config.degeneracy.threshold = SlamConfig{}.degeneracy.threshold;
