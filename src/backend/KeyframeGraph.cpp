@@ -127,6 +127,7 @@ std::optional<MapCorrection> KeyframeGraph::add(const NodePose& pose, const Poin
     disagrees = disagrees || graph_.chi2(i) > kAgreeingChi2;
   }
   loops_unoptimised_ += graph_.constraints().size() - loops_before;
+  count_loops();
   if (!disagrees && loops_unoptimised_ < kLoopsPerOptimisation) return std::nullopt;
   optimise_graph();
   // The front end's map is rebuilt only when a keyframe's points moved by more than it can see.
@@ -141,11 +142,21 @@ std::optional<MapCorrection> KeyframeGraph::optimise() {
 }
 
 void KeyframeGraph::optimise_graph() {
-  const OptimisationReport report = graph_.optimise();
+  graph_.optimise();
   ++counts_.optimisations;
-  counts_.rejected_by_graph = report.loops_rejected;
-  counts_.accepted = report.loops_active;
+  count_loops();
   loops_unoptimised_ = 0;
+}
+
+// The loops in the graph, and those it switched off, as they stand now (a loop the estimate
+// agrees with is in the graph before any optimisation).
+void KeyframeGraph::count_loops() {
+  counts_.accepted = 0;
+  counts_.rejected_by_graph = 0;
+  for (std::size_t i = 0; i < graph_.constraints().size(); ++i) {
+    if (graph_.constraints()[i].kind != ConstraintKind::Loop) continue;
+    ++(graph_.active()[i] ? counts_.accepted : counts_.rejected_by_graph);
+  }
 }
 
 // m: the most any keyframe's farthest point moved between the front end's map and the graph.

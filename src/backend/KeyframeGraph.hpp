@@ -25,7 +25,7 @@ namespace uavslam::backend {
 
 struct LoopCounts {
   std::size_t searches = 0;            // candidates searched
-  std::size_t accepted = 0;            // loops in the graph (and kept by it)
+  std::size_t accepted = 0;            // loops in the graph, not switched off
   std::size_t rejected_score = 0;      // nothing in the window scored min_score
   std::size_t rejected_ambiguous = 0;  // a look-alike scored nearly as well
   std::size_t rejected_by_graph = 0;   // switched off by the optimisation: the rest disagreed
@@ -99,6 +99,7 @@ class KeyframeGraph {
   std::vector<Eigen::Vector2d> neighbourhood(std::size_t centre, std::size_t first,
                                              std::size_t last) const;
   void optimise_graph();
+  void count_loops();
   double largest_shift() const;
   MapCorrection correction_about(std::size_t newest);
 

@@ -53,6 +53,9 @@ TEST(KeyframeGraphTest, ClosesTheLoopAroundAHall) {
 
   EXPECT_GT(graph.counts().accepted, 0u);
   EXPECT_EQ(graph.counts().rejected_by_graph, 0u);
+  // Every search ends one way: a loop kept, or refused for one reason.
+  const LoopCounts& c = graph.counts();
+  EXPECT_EQ(c.searches, c.accepted + c.rejected_score + c.rejected_ambiguous + c.rejected_by_graph);
   EXPECT_GT(corrections, 0u);
   double worst = 0.0;
   for (std::size_t k = 0; k < truth.size(); ++k) {
@@ -92,6 +95,19 @@ TEST(KeyframeGraphTest, KeepsNoLoopADoorOffInACorridorOfEqualDoors) {
   for (std::size_t k = 0; k < truth.size(); ++k) {
     EXPECT_LT((graph.pose(k).position - truth[k].position).norm(), 0.1) << k;
   }
+}
+
+// A loop the estimate already agrees with goes into the graph without an optimisation, and is
+// counted as accepted from then on.
+TEST(KeyframeGraphTest, ALoopIsCountedBeforeAnyOptimisation) {
+  std::vector<NodePose> truth = loop_flight();
+  const std::vector<Flown> flown = drift(truth, hall(), 0.0);
+  KeyframeGraph graph(loop_config());
+  for (const Flown& f : flown) ASSERT_FALSE(graph.add(f.pose, f.points, {}).has_value());
+  const LoopCounts& c = graph.counts();
+  EXPECT_GT(c.accepted, 0u);
+  EXPECT_EQ(c.optimisations, 0u) << "loops that agree (a flight without drift) move nothing";
+  EXPECT_EQ(c.searches, c.accepted + c.rejected_score + c.rejected_ambiguous + c.rejected_by_graph);
 }
 
 TEST(KeyframeGraphTest, KeepsEachKeyframesPointsInItsFrame) {
