@@ -164,7 +164,10 @@ nlohmann::json FlightRecord::summary() const {
                             {"scans_accepted", counters_.scans_accepted},
                             {"last_outcome", counters_.last_outcome},
                             {"last_tracking", counters_.tracking},
-                            {"last_tracking_reason", counters_.tracking_reason}};
+                            {"last_tracking_reason", counters_.tracking_reason},
+                            {"loops_searched", counters_.loops_searched},
+                            {"loops_accepted", counters_.loops_accepted},
+                            {"corrections", counters_.corrections}};
   json["map"] = {{"snapshots_received", maps_},
                  {"malformed", malformed_maps_},
                  {"last_map_seq", maps_ > 0 ? nlohmann::json(map_info_.map_seq) : nlohmann::json()},

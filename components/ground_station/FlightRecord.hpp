@@ -29,6 +29,9 @@ struct MatcherCounters {
   std::string last_outcome;
   std::string tracking;  // "tracking", "degraded" or "lost"
   std::string tracking_reason;
+  std::uint64_t loops_searched = 0;  // the matcher's back end (0 without one)
+  std::uint64_t loops_accepted = 0;
+  std::uint64_t corrections = 0;
 };
 
 // What a map snapshot says about itself.

@@ -71,6 +71,9 @@ ground_station::MatcherCounters counters_of(const msg::MatcherStatus& m) {
   c.last_outcome = m.outcome();
   c.tracking = m.tracking();
   c.tracking_reason = m.tracking_reason();
+  c.loops_searched = m.loops_searched();
+  c.loops_accepted = m.loops_accepted();
+  c.corrections = m.corrections();
   return c;
 }
 

@@ -176,14 +176,15 @@ class MatcherNode {
     // The back end moved the keyframes: every one where it now is, before the newest keyframe
     // goes out in the corrected frame.
     if (result.map_corrected) {
-      keyframe_poses_.write(
-          dds::keyframe_poses_message(slam_.keyframe_poses(), slam_.keyframe_stamps(), scan.stamp,
-                                      ++corrections_, source));
+      keyframe_poses_.write(dds::keyframe_poses_message(slam_.keyframe_poses(),
+                                                        slam_.keyframe_stamps(), scan.stamp,
+                                                        ++counts_.corrections, source));
     }
     if (result.keyframe) map_points_.write(dds::keyframe_message(*result.keyframe, source));
     counts_.rejected += !result.report.accepted();
     counts_.received = queue_.scans_received();
     counts_.skipped = skipped;
+    if (const std::optional<backend::LoopCounts> loops = slam_.loops()) counts_.loops = *loops;
     status_.write(dds::status_message(result, scan, (wall_seconds() - work.scan.published_at) * 1e3,
                                       counts_, statuses_++, source));
   }
@@ -217,8 +218,8 @@ class MatcherNode {
                 << " without (no odometry near the scan or the last posed scan)\n";
     }
     if (const std::optional<backend::LoopCounts> loops = slam_.loops()) {
-      std::cerr << "slam_matcher: loops: " << backend::describe(*loops) << "; " << corrections_
-                << " corrections published\n";
+      std::cerr << "slam_matcher: loops: " << backend::describe(*loops) << "; "
+                << counts_.corrections << " corrections published\n";
     }
     if (velocity_) {
       std::cerr << "slam_matcher: velocity: " << queue_.velocity_received() << " samples received, "
@@ -238,7 +239,6 @@ class MatcherNode {
   dds::Writer<msg::PoseWithCovarianceStampedPubSubType> pose_;
   dds::Writer<msg::MapPointsPubSubType> map_points_;
   dds::Writer<msg::KeyframePosesPubSubType> keyframe_poses_;
-  std::uint64_t corrections_ = 0;  // keyframe_poses published
   dds::Writer<msg::MatcherStatusPubSubType> status_;
   dds::Reader<msg::LaserScanPubSubType> scans_;
   std::unique_ptr<dds::Reader<msg::PoseWithCovarianceStampedPubSubType>> odometry_;   // or none

@@ -82,6 +82,9 @@ msg::MatcherStatus status_message(const VehicleScan& result, const Scan& scan, d
   s.scans_skipped(counts.skipped);
   s.scans_rejected(counts.rejected);
   s.scans_accepted(counts.accepted);
+  s.loops_searched(static_cast<std::uint32_t>(counts.loops.searches));
+  s.loops_accepted(static_cast<std::uint32_t>(counts.loops.accepted));
+  s.corrections(static_cast<std::uint32_t>(counts.corrections));
   s.tracking(to_string(result.tracking.state));
   s.tracking_reason(to_string(result.tracking.reason));
   s.degenerate_directions(static_cast<std::uint32_t>(report.seen.degenerate));

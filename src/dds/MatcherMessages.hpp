@@ -51,7 +51,9 @@ struct MatcherCounts {
   std::uint64_t received = 0;
   std::uint64_t skipped = 0;  // dropped unprocessed: a fresher scan was waiting
   std::uint64_t rejected = 0;
-  std::uint64_t accepted = 0;  // scans matched
+  std::uint64_t accepted = 0;     // scans matched
+  backend::LoopCounts loops;      // the back end's (none: zeros)
+  std::uint64_t corrections = 0;  // keyframe_poses published
 };
 
 // latency_ms: from the scan's publication to now; the processing time is the pipeline's.

@@ -283,6 +283,9 @@ TEST_F(DdsPipeline, TheBackEndsCorrectionsReachTheMapServer) {
   std::ifstream summary_file(flight.ground_station_out + "/summary.json");
   const nlohmann::json summary = nlohmann::json::parse(summary_file);
   EXPECT_GE(summary["back_end"]["corrections_received"].get<int>(), 1);
+  // The matcher's status said so as it flew.
+  EXPECT_GT(summary["matcher_status"]["loops_accepted"].get<int>(), 0);
+  EXPECT_EQ(summary["matcher_status"]["corrections"].get<int>(), published);
   const std::vector<Pose> keyframes = io::read_tum(flight.ground_station_out + "/keyframes.tum");
   EXPECT_EQ(keyframes.size(), summary["back_end"]["keyframes_corrected"].get<std::size_t>());
   EXPECT_GT(keyframes.size(), 100u);

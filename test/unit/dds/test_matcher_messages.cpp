@@ -57,8 +57,10 @@ TEST(MatcherMessages, TheKeyframeAndTheStatusCarryWhatTheScanGave) {
   Scan scan;
   scan.stamp = 12.5;
   scan.sequence = 99;
-  const msg::MatcherStatus status =
-      status_message(result, scan, 1.5, {100, 2, 3, 95}, 7, {"map", "uav1"});
+  MatcherCounts counts{100, 2, 3, 95, {}, 2};
+  counts.loops.searches = 40;
+  counts.loops.accepted = 9;
+  const msg::MatcherStatus status = status_message(result, scan, 1.5, counts, 7, {"map", "uav1"});
   EXPECT_EQ(status.outcome(), "error_increased");
   EXPECT_EQ(status.scan_seq(), 99u);
   EXPECT_EQ(status.header().seq(), 7u);
@@ -75,6 +77,9 @@ TEST(MatcherMessages, TheKeyframeAndTheStatusCarryWhatTheScanGave) {
   EXPECT_EQ(status.tracking(), "lost");
   EXPECT_EQ(status.tracking_reason(), "repeated_rejections");
   EXPECT_EQ(status.degenerate_directions(), 1u);
+  EXPECT_EQ(status.loops_searched(), 40u);
+  EXPECT_EQ(status.loops_accepted(), 9u);
+  EXPECT_EQ(status.corrections(), 2u);
 }
 
 // The position's covariance as the pipeline reported it, the attitude's as the source states it;
