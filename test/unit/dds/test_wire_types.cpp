@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <msg/ImuPubSubTypes.h>
-#include <msg/LaserScanPubSubTypes.h>
 #include <msg/KeyframePosesPubSubTypes.h>
+#include <msg/LaserScanPubSubTypes.h>
 #include <msg/MapPointsPubSubTypes.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/OccupancyMapPubSubTypes.h>
