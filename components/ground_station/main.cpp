@@ -153,11 +153,7 @@ class GroundStation {
     backend::StampedKeyframes correction;
     correction.stamp = dds::from_msg_time(m.header().stamp());
     for (const dds::KeyframePlacement& placed : dds::from_msg(m)) {
-      Pose p;
-      p.stamp = placed.stamp;
-      p.position = placed.pose.position;
-      p.orientation = Eigen::AngleAxisd(placed.pose.yaw, Vec3::UnitZ());
-      correction.keyframes.push_back(p);
+      correction.keyframes.push_back(backend::pose_of(placed.pose, placed.stamp));
     }
     record_.add_correction(std::move(correction));
   }

@@ -271,7 +271,7 @@ std::vector<Eigen::Vector2d> KeyframeGraph::neighbourhood(std::size_t centre, st
 
 // The newest keyframe's neighbourhood (it and the submap_keyframes before it) searched over the
 // candidate's (submap_keyframes either side) around where the estimate puts it.
-bool KeyframeGraph::search(std::size_t newest, const Candidate& candidate) {
+void KeyframeGraph::search(std::size_t newest, const Candidate& candidate) {
   ++counts_.searches;
   const auto spread = static_cast<std::size_t>(config_.submap_keyframes);
   const std::size_t j = candidate.keyframe;
@@ -294,11 +294,11 @@ bool KeyframeGraph::search(std::size_t newest, const Candidate& candidate) {
   const CorrelativeMatch match = matcher.match(scan, window, config_.min_score);
   if (!match.found) {
     ++counts_.rejected_score;
-    return false;
+    return;
   }
   if (match.score - match.second_score < config_.min_score_margin) {
     ++counts_.rejected_ambiguous;
-    return false;
+    return;
   }
   Constraint loop;
   loop.from = j;
@@ -309,7 +309,6 @@ bool KeyframeGraph::search(std::size_t newest, const Candidate& candidate) {
       diagonal_information(config_.loop_sigma, kLoopHeightSigma, config_.loop_yaw_sigma);
   loop.kind = ConstraintKind::Loop;
   graph_.add_constraint(loop);
-  return true;
 }
 
 Points KeyframeGraph::points_in_world(std::size_t keyframe) const {

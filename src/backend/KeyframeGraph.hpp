@@ -95,7 +95,7 @@ class KeyframeGraph {
   Constraint step_constraint(const NodePose& from, const NodePose& to) const;
   std::vector<PathUncertainty> uncertainty_from(std::size_t newest) const;
   std::vector<Candidate> candidates(std::size_t newest) const;
-  bool search(std::size_t newest, const Candidate& candidate);
+  void search(std::size_t newest, const Candidate& candidate);
   std::vector<Eigen::Vector2d> neighbourhood(std::size_t centre, std::size_t first,
                                              std::size_t last) const;
   void optimise_graph();

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/Heading.hpp"
 #include "core/Types.hpp"
 
 namespace uavslam::backend {
@@ -19,6 +20,19 @@ struct NodePose {
   Vec3 position = Vec3::Zero();  // m, world frame
   double yaw = 0.0;              // rad
 };
+
+// A body pose as a node sees it (its heading; roll and pitch are the orientation source's), and
+// back: level, stamped.
+inline NodePose node_of(const Pose& pose) {
+  return {pose.position, heading_of(pose.orientation)};
+}
+inline Pose pose_of(const NodePose& node, double stamp) {
+  Pose p;
+  p.stamp = stamp;
+  p.position = node.position;
+  p.orientation = yaw_rotation(node.yaw);
+  return p;
+}
 
 enum class ConstraintKind { Sequential, Loop };
 

@@ -9,10 +9,6 @@
 namespace uavslam::backend {
 namespace {
 
-NodePose node_of(const Pose& pose) {
-  return {pose.position, heading_of(pose.orientation)};
-}
-
 // The frame of a stamp: how many corrections are stamped at or before it.
 std::size_t frame_at(double stamp, const std::vector<StampedKeyframes>& corrections) {
   return static_cast<std::size_t>(

@@ -56,15 +56,24 @@ void GraphWorker::run() {
 // the graph; an update when a loop moved the graph.
 void GraphWorker::process(GraphKeyframe keyframe) {
   const auto started = Clock::now();
-  backend::MapCorrection to_graph;
-  for (std::size_t g = keyframe.frame; g < corrections_.size(); ++g) {
-    to_graph = to_graph.then(corrections_[g]);
-  }
+  const backend::MapCorrection to_graph = since(keyframe.frame);
   for (Vec3& p : keyframe.points) p = to_graph.transform * p;
   for (Vec3& n : keyframe.normals) n = to_graph.transform.linear() * n;
   const std::optional<backend::MapCorrection> moved =
       graph_.add(to_graph(keyframe.pose), keyframe.points, keyframe.normals);
   if (moved) publish(*moved);
+  account(started);
+}
+
+// From frame `frame` to the graph's: the corrections in between, one after the other.
+backend::MapCorrection GraphWorker::since(std::size_t frame) const {
+  backend::MapCorrection total;
+  for (std::size_t g = frame; g < corrections_.size(); ++g) total = total.then(corrections_[g]);
+  return total;
+}
+
+// The counts as they now stand, and the time since `started` spent on the graph.
+void GraphWorker::account(std::chrono::steady_clock::time_point started) {
   const std::lock_guard<std::mutex> lock(mutex_);
   counts_ = graph_.counts();
   seconds_ += std::chrono::duration<double>(Clock::now() - started).count();
@@ -82,9 +91,7 @@ void GraphWorker::publish(const backend::MapCorrection& correction) {
   }
   const std::lock_guard<std::mutex> lock(mutex_);
   // From the frame the front end is in: the updates it has not taken are folded into this one.
-  for (std::size_t g = taken_frame_; g < corrections_.size(); ++g) {
-    update.correction = update.correction.then(corrections_[g]);
-  }
+  update.correction = since(taken_frame_);
   poses_ = update.poses;
   ready_ = std::move(update);
 }
@@ -107,9 +114,7 @@ void GraphWorker::finish() {
   const auto started = Clock::now();
   const std::optional<backend::MapCorrection> moved = graph_.optimise();
   if (moved) publish(*moved);
-  const std::lock_guard<std::mutex> lock(mutex_);
-  counts_ = graph_.counts();
-  seconds_ += std::chrono::duration<double>(Clock::now() - started).count();
+  account(started);
 }
 
 backend::LoopCounts GraphWorker::counts() const {

@@ -12,6 +12,7 @@
 // folded into the newest one.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -65,6 +66,8 @@ class GraphWorker {
   void run();
   void process(GraphKeyframe keyframe);
   void publish(const backend::MapCorrection& correction);
+  backend::MapCorrection since(std::size_t frame) const;
+  void account(std::chrono::steady_clock::time_point started);
 
   backend::KeyframeGraph graph_;                     // the worker's alone (inline: the caller's)
   std::vector<backend::MapCorrection> corrections_;  // [g]: frame g to g + 1

@@ -8,10 +8,6 @@
 namespace uavslam {
 namespace {
 
-backend::NodePose node_of(const Pose& pose) {
-  return {pose.position, heading_of(pose.orientation)};
-}
-
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
@@ -77,7 +73,7 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
     // Both in the map's frame as the scan was matched in it; the keyframe scan itself: no offset.
     backend::Constraint offset;
     if (!result.report.map_updated) {
-      offset = backend::relative(keyframe_poses_.back(), node_of(result.report.pose));
+      offset = backend::relative(keyframe_poses_.back(), backend::node_of(result.report.pose));
     }
     result.anchor = ScanAnchor{keyframes_ - (result.report.map_updated ? 0 : 1), offset};
   }
@@ -124,7 +120,7 @@ void VehicleSlam::add_to_graph(const ScanReport& report) {
   const WorldMap& map = pipeline_.map();
   const std::size_t first = map.size() - report.added_points.size();
   keyframe_starts_.push_back(first);
-  keyframe_poses_.push_back(node_of(report.pose));
+  keyframe_poses_.push_back(backend::node_of(report.pose));
   keyframe_stamps_.push_back(report.pose.stamp);
   GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_};
   if (!map.normals().empty()) {

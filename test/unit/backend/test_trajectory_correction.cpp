@@ -10,18 +10,6 @@
 namespace uavslam::backend {
 namespace {
 
-Pose pose_of(double stamp, const NodePose& n) {
-  Pose p;
-  p.stamp = stamp;
-  p.position = n.position;
-  p.orientation = yaw_rotation(n.yaw);
-  return p;
-}
-
-NodePose node_of(const Pose& p) {
-  return {p.position, heading_of(p.orientation)};
-}
-
 // A front end flying a curve (poses 0..99, a keyframe every 10th) whose map the back end
 // corrects twice, bending it: at pose 35 (the keyframes 0..3 moved, the front end's frame moved
 // with keyframe 3) and at pose 72 (keyframes 0..7). Each pose is published in the frame its
@@ -46,7 +34,7 @@ TEST(TrajectoryCorrectionTest, EachPoseFollowsItsKeyframeAcrossTheFrames) {
     StampedKeyframes c;
     c.stamp = at;
     const int newest = (at - 1) / 10;  // the keyframes made before the correction's scan
-    for (int k = 0; k <= newest; ++k) c.keyframes.push_back(pose_of(10 * k, graph_pose(k, amount)));
+    for (int k = 0; k <= newest; ++k) c.keyframes.push_back(pose_of(graph_pose(k, amount), 10 * k));
     corrections.push_back(c);
     frames.push_back(correction_between(flown[static_cast<std::size_t>(10 * newest)],
                                         graph_pose(newest, amount)));
@@ -57,7 +45,7 @@ TEST(TrajectoryCorrectionTest, EachPoseFollowsItsKeyframeAcrossTheFrames) {
   for (int i = 0; i < 100; ++i) {
     std::size_t frame = 0;
     while (frame < plan.size() && i >= plan[frame].first) ++frame;
-    published.push_back(pose_of(i, frames[frame](flown[static_cast<std::size_t>(i)])));
+    published.push_back(pose_of(frames[frame](flown[static_cast<std::size_t>(i)]), i));
   }
 
   const std::vector<Pose> corrected = corrected_trajectory(published, corrections);
@@ -81,7 +69,7 @@ TEST(TrajectoryCorrectionTest, EachPoseFollowsItsKeyframeAcrossTheFrames) {
 }
 
 TEST(TrajectoryCorrectionTest, WithoutCorrectionsTheStreamIsAsFlown) {
-  const std::vector<Pose> poses = {pose_of(1.0, {Vec3(1, 2, 3), 0.5})};
+  const std::vector<Pose> poses = {pose_of({Vec3(1, 2, 3), 0.5}, 1.0)};
   const std::vector<Pose> same = corrected_trajectory(poses, {});
   ASSERT_EQ(same.size(), 1u);
   EXPECT_EQ(same[0].position, poses[0].position);
