@@ -127,7 +127,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   pose_ = {scan.stamp, position, orientation};
   covariance_ = report.covariance;
   if (config_.degeneracy.threshold > 0.0) map_covariance_ = map_part(report, match);
-  report.map_covariance = map_covariance_;
+  report.map_covariance = map_covariance_.topLeftCorner<3, 3>();
   report.pose = pose_;
   if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
   return finish(report);
@@ -142,7 +142,7 @@ ScanReport SlamPipeline::carried_by_prior(ScanReport& report, const Pose& start,
   pose_ = start;
   report.pose = pose_;
   report.covariance = covariance_;
-  report.map_covariance = map_covariance_;
+  report.map_covariance = map_covariance_.topLeftCorner<3, 3>();
   report.dead_reckoned = true;
   return finish(report);
 }
@@ -173,9 +173,9 @@ MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted)
   if (heading == HeadingMode::PeriodicCheck && heading_check_due(predicted)) {
     scans_since_heading_check_ = 0;
     MatchResult checked = matcher_.match(map_, points, start, true, &nearest_);
-    if (checked.outcome == ScanOutcome::Accepted &&
-        std::abs(checked.yaw) > config_.icp.heading_check_tolerance) {
-      return checked;
+    if (checked.outcome == ScanOutcome::Accepted) {
+      heading_drift_.add_check(checked.yaw);
+      if (std::abs(checked.yaw) > config_.icp.heading_check_tolerance) return checked;
     }
   }
   ++scans_since_heading_check_;
@@ -225,17 +225,43 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
   return start.position + report.seen.observed * (match.position - start.position);
 }
 
-// How well the map the scan matched is placed (extensions/MapUncertainty), in the directions the
-// scan fixed. A blind direction keeps what it had: there the position is the prior's, carried
-// from the last fixes, and the prior's covariance is relative to the map those fixes were made
-// against (the inertial filter takes map-relative fixes), so the map's uncertainty at them still
-// stands under it:
-//   Sigma_map = P Sigma_pairs P^T + (I - P) Sigma_map,last (I - P)^T
-Eigen::Matrix3d SlamPipeline::map_part(const ScanReport& report, const MatchResult& match) const {
-  const Eigen::Matrix3d& P = report.seen.observed;
-  const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - P;
-  return P * map_uncertainty_.of_match(match.pairs) * P.transpose() +
-         blind * map_covariance_ * blind.transpose();
+// How well the map the scan matched is placed (extensions/MapUncertainty), over (x, y, z, yaw),
+// in the directions the scan fixed. A blind direction keeps what it had: there the position is
+// the prior's, carried from the last fixes, and the prior's covariance is relative to the map
+// those fixes were made against (the inertial filter takes map-relative fixes), so the map's
+// uncertainty at them still stands under it:
+//   Sigma_map = T Sigma_pairs T^T + B Sigma_map,last B^T,   T = diag(P, 1), B = diag(I - P, 0)
+Eigen::Matrix4d SlamPipeline::map_part(const ScanReport& report, const MatchResult& match) const {
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = report.seen.observed;
+  Eigen::Matrix4d B = Eigen::Matrix4d::Zero();
+  B.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() - report.seen.observed;
+  return T * map_uncertainty_.of_match(match.pairs) * T.transpose() +
+         B * map_covariance_ * B.transpose();
+}
+
+// The covariance over (x, y, z, yaw) a keyframe joins the map with: the map's where the scan
+// matched, plus the match's own, plus the heading's own error, which turns the keyframe's points
+// about it. Checked against the map (icp.heading: periodic_check), the heading is the map's up to
+// what drifts between checks (extensions/HeadingDrift). Taken from the source as it is (the
+// seed), it is the source's, imu.heading_sigma, and not the map's. Estimated in every scan, the
+// map's (the match's own yaw noise is not estimated).
+Eigen::Matrix4d SlamPipeline::keyframe_covariance(const ScanReport& report) const {
+  Eigen::Matrix4d covariance = map_covariance_;
+  covariance.topLeftCorner<3, 3>() += report.covariance;
+  switch (config_.icp.heading) {
+    case HeadingMode::Source:
+      covariance.row(3).setZero();
+      covariance.col(3).setZero();
+      covariance(3, 3) = config_.imu.heading_sigma * config_.imu.heading_sigma;
+      break;
+    case HeadingMode::PeriodicCheck:
+      covariance(3, 3) += heading_drift_.variance_per_keyframe();
+      break;
+    case HeadingMode::EveryScan:
+      break;
+  }
+  return covariance;
 }
 
 // The covariance of the predicted position: the prior's own, turned into the corrected heading;
@@ -292,7 +318,7 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
   if (config_.icp.metric == IcpMetric::PointToLine) {
     normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
   }
-  map_uncertainty_.add_keyframe(map_.size(), report.absolute_covariance());
+  map_uncertainty_.add_keyframe(map_.size(), pose_.position, keyframe_covariance(report));
   report.added_points = map_.add_points(aligned, normals);
   ++keyframes_;
   last_map_update_position_ = pose_.position;
@@ -310,11 +336,13 @@ std::vector<std::size_t> SlamPipeline::replace_map(const std::vector<MapKeyframe
   map_ = WorldMap(make_nearest_neighbour_index(config_.nearest_neighbour),
                   config_.map.min_point_spacing);
   std::vector<std::size_t> first_points;
+  std::vector<Vec3> positions;
   for (const MapKeyframe& keyframe : keyframes) {
     first_points.push_back(map_.size());
+    positions.push_back(keyframe.position);
     map_.add_points(keyframe.points, keyframe.normals);
   }
-  map_uncertainty_.move_keyframes(first_points);
+  map_uncertainty_.move_keyframes(first_points, positions);
   nearest_.clear();  // the warm start's indices were the old map's
   heading_correction_ = std::remainder(heading_correction_ + yaw, 2.0 * M_PI);
   pose_.position = correction * pose_.position;

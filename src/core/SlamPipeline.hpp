@@ -15,6 +15,7 @@
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/HeadingDrift.hpp"
 #include "core/extensions/MapUncertainty.hpp"
 #include "core/extensions/MatchNoise.hpp"
 #include "core/extensions/PriorAgreement.hpp"
@@ -64,6 +65,7 @@ struct ScanReport {
 // A keyframe's share of the map, for rebuilding it (replace_map): its points and, with the
 // point-to-line metric, their normals (else empty), world frame.
 struct MapKeyframe {
+  Vec3 position = Vec3::Zero();  // of the body when the keyframe was taken
   Points points;
   std::vector<Vec3> normals;
 };
@@ -111,7 +113,8 @@ class SlamPipeline {
   bool moved_enough_for_map_update(const Pose& pose) const;
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
   ScanPoints scan_points(const ProjectedScan& projected) const;
-  Eigen::Matrix3d map_part(const ScanReport& report, const MatchResult& match) const;
+  Eigen::Matrix4d map_part(const ScanReport& report, const MatchResult& match) const;
+  Eigen::Matrix4d keyframe_covariance(const ScanReport& report) const;
   Eigen::Matrix3d predicted_covariance(const MotionPrediction& prediction, double stamp) const;
   // `prior`: predicted_covariance at the scan, computed once per scan for these.
   ScanReport carried_by_prior(ScanReport& report, const Pose& start, const Eigen::Matrix3d& prior);
@@ -137,7 +140,8 @@ class SlamPipeline {
   MatchNoise match_noise_;
   PriorGate gate_;
   MapUncertainty map_uncertainty_;
-  Eigen::Matrix3d map_covariance_ = Eigen::Matrix3d::Zero();  // the last match's
+  HeadingDrift heading_drift_;
+  Eigen::Matrix4d map_covariance_ = Eigen::Matrix4d::Zero();  // the last match's, (x, y, z, yaw)
   std::size_t keyframes_ = 0;
 };
 

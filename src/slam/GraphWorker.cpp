@@ -85,9 +85,10 @@ void GraphWorker::publish(const backend::MapCorrection& correction) {
   update.frame = corrections_.size();
   update.keyframes.resize(graph_.size());
   for (std::size_t k = 0; k < graph_.size(); ++k) {
+    update.poses.push_back(graph_.pose(k));
+    update.keyframes[k].position = update.poses.back().position;
     update.keyframes[k].points = graph_.points_in_world(k);
     update.keyframes[k].normals = graph_.normals_in_world(k);
-    update.poses.push_back(graph_.pose(k));
   }
   const std::lock_guard<std::mutex> lock(mutex_);
   // From the frame the front end is in: the updates it has not taken are folded into this one.

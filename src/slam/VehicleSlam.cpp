@@ -142,6 +142,7 @@ bool VehicleSlam::apply_graph_update() {
   for (std::size_t k = keyframes.size(); k < keyframe_starts_.size(); ++k) {
     const std::size_t end = k + 1 < keyframe_starts_.size() ? keyframe_starts_[k + 1] : map.size();
     MapKeyframe moved;
+    moved.position = correction.transform * keyframe_poses_[k].position;
     for (std::size_t i = keyframe_starts_[k]; i < end; ++i) {
       moved.points.push_back(correction.transform * map.point(i));
       if (!map.normals().empty()) {

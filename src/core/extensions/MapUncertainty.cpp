@@ -12,9 +12,9 @@ namespace uavslam {
 namespace {
 
 // The symmetric square root of a covariance (its negative rounding errors taken as zero).
-Eigen::Matrix3d square_root(const Eigen::Matrix3d& covariance) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
-  const Eigen::Vector3d roots = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+Eigen::Matrix4d square_root(const Eigen::Matrix4d& covariance) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> solver(covariance);
+  const Eigen::Vector4d roots = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   return solver.eigenvectors() * roots.asDiagonal() * solver.eigenvectors().transpose();
 }
 
@@ -29,19 +29,37 @@ Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d& information) {
   return solver.eigenvectors() * inverse.asDiagonal() * solver.eigenvectors().transpose();
 }
 
+// perp(v): how a point at v from a keyframe's position moves per radian the keyframe turns.
+Vec3 perp(const Vec3& v) {
+  return {-v.y(), v.x(), 0.0};
+}
+
+// What one keyframe's pairs hold of a match: H_k, sum_i H_i perp(d_i - p_k), and their
+// horizontal information (trace).
+struct KeyframePairs {
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  Vec3 turn = Vec3::Zero();
+  double horizontal = 0.0;
+};
+
 }  // namespace
 
-void MapUncertainty::add_keyframe(std::size_t first_point, const Eigen::Matrix3d& covariance) {
+void MapUncertainty::add_keyframe(std::size_t first_point, const Vec3& position,
+                                  const Eigen::Matrix4d& covariance) {
   first_points_.push_back(first_point);
+  positions_.push_back(position);
   roots_.push_back(square_root(covariance));
 }
 
-void MapUncertainty::move_keyframes(const std::vector<std::size_t>& first_points) {
-  if (first_points.size() != first_points_.size()) {
+void MapUncertainty::move_keyframes(const std::vector<std::size_t>& first_points,
+                                    const std::vector<Vec3>& positions) {
+  if (first_points.size() != first_points_.size() || positions.size() != positions_.size()) {
     throw std::invalid_argument("MapUncertainty: " + std::to_string(first_points.size()) +
-                                " keyframes moved of " + std::to_string(first_points_.size()));
+                                " keyframes (" + std::to_string(positions.size()) +
+                                " positions) moved of " + std::to_string(first_points_.size()));
   }
   first_points_ = first_points;
+  positions_ = positions;
 }
 
 // The last keyframe that starts at or before the point (a keyframe that added nothing shares its
@@ -52,20 +70,31 @@ std::optional<std::size_t> MapUncertainty::keyframe_of(std::size_t index) const 
   return static_cast<std::size_t>(after - first_points_.begin()) - 1;
 }
 
-Eigen::Matrix3d MapUncertainty::of_match(const Correspondences& pairs) const {
-  std::map<std::size_t, Eigen::Matrix3d> by_keyframe;  // H_k
-  Eigen::Matrix3d total = Eigen::Matrix3d::Zero();     // H
+Eigen::Matrix4d MapUncertainty::of_match(const Correspondences& pairs) const {
+  std::map<std::size_t, KeyframePairs> by_keyframe;
+  Eigen::Matrix3d total = Eigen::Matrix3d::Zero();  // H
+  double horizontal = 0.0;
   for (std::size_t i = 0; i < pairs.map_index.size(); ++i) {
     const std::optional<std::size_t> k = keyframe_of(pairs.map_index[i]);
     const Eigen::Matrix3d information = pair_information(pairs, i);
     if (!k || information.isZero()) continue;
-    by_keyframe.try_emplace(*k, Eigen::Matrix3d::Zero()).first->second += information;
+    KeyframePairs& own = by_keyframe[*k];
+    own.information += information;
+    own.turn += information * perp(pairs.map[i] - positions_[*k]);
+    own.horizontal += information.topLeftCorner<2, 2>().trace();
     total += information;
+    horizontal += information.topLeftCorner<2, 2>().trace();
   }
-  if (by_keyframe.empty()) return Eigen::Matrix3d::Zero();
+  if (by_keyframe.empty()) return Eigen::Matrix4d::Zero();
   const Eigen::Matrix3d inverse = pseudo_inverse(total);
-  Eigen::Matrix3d L = Eigen::Matrix3d::Zero();
-  for (const auto& [k, information] : by_keyframe) L += inverse * information * roots_[k];
+  Eigen::Matrix4d L = Eigen::Matrix4d::Zero();
+  for (const auto& [k, own] : by_keyframe) {
+    Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
+    A.topLeftCorner<3, 3>() = inverse * own.information;
+    A.topRightCorner<3, 1>() = inverse * own.turn;
+    A(3, 3) = horizontal > 0.0 ? own.horizontal / horizontal : 0.0;
+    L += A * roots_[k];
+  }
   return L * L.transpose();
 }
 

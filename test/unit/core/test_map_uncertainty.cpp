@@ -2,34 +2,39 @@
 // paired with, each in the directions its pairs fixed.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "core/extensions/MapUncertainty.hpp"
 
 namespace uavslam {
 namespace {
 
-Eigen::Matrix3d isotropic(double variance) {
-  return variance * Eigen::Matrix3d::Identity();
+// Position covariances with a heading known exactly.
+Eigen::Matrix4d isotropic(double variance) {
+  Eigen::Matrix4d covariance = variance * Eigen::Matrix4d::Identity();
+  covariance(3, 3) = 0.0;
+  return covariance;
 }
 
-Eigen::Matrix3d diagonal(double x, double y, double z) {
-  return Vec3(x, y, z).asDiagonal();
+Eigen::Matrix4d diagonal(double x, double y, double z) {
+  return Eigen::Vector4d(x, y, z, 0.0).asDiagonal();
 }
 
 // Pairs on walls (horizontal normal n, level beams) or the floor (vertical), each with the map
 // point it paired with.
 struct Pairs {
   Correspondences pairs;
-  Pairs& wall(std::size_t map_index, const Vec3& normal) {
-    add(map_index, normal, Vec3(1.0, 1.0, 0.0));
+  Pairs& wall(std::size_t map_index, const Vec3& normal, const Vec3& at = Vec3::Zero()) {
+    add(map_index, normal, Vec3(1.0, 1.0, 0.0), at);
     return *this;
   }
   Pairs& floor(std::size_t map_index) {
-    add(map_index, Vec3::Zero(), Vec3(0.0, 0.0, 1.0));
+    add(map_index, Vec3::Zero(), Vec3(0.0, 0.0, 1.0), Vec3::Zero());
     return *this;
   }
-  void add(std::size_t map_index, const Vec3& normal, const Vec3& weights) {
-    pairs.scan.push_back(Vec3::Zero());
-    pairs.map.push_back(Vec3::Zero());
+  void add(std::size_t map_index, const Vec3& normal, const Vec3& weights, const Vec3& at) {
+    pairs.scan.push_back(at);
+    pairs.map.push_back(at);
     pairs.map_index.push_back(map_index);
     pairs.weights.push_back(weights);
     pairs.scan_normals.push_back(normal);
@@ -38,9 +43,10 @@ struct Pairs {
 
 MapUncertainty three_keyframes() {
   MapUncertainty map;
-  map.add_keyframe(0, isotropic(0.0));    // points 0..99: the take-off, the map's anchor
-  map.add_keyframe(100, isotropic(4.0));  // points 100..149
-  map.add_keyframe(150, isotropic(1.0));  // points 150..
+  map.add_keyframe(0, Vec3::Zero(),
+                   isotropic(0.0));  // points 0..99: the take-off, the map's anchor
+  map.add_keyframe(100, Vec3::Zero(), isotropic(4.0));  // points 100..149
+  map.add_keyframe(150, Vec3::Zero(), isotropic(1.0));  // points 150..
   return map;
 }
 
@@ -64,7 +70,7 @@ TEST(MapUncertainty, EachKeyframeCountsInTheDirectionsItsPairsFixed) {
   Pairs corridor;
   for (std::size_t i = 0; i < 50; ++i) corridor.wall(i, Vec3::UnitY()).floor(i);
   corridor.wall(120, Vec3::UnitX());
-  const Eigen::Matrix3d covariance = map.of_match(corridor.pairs);
+  const Eigen::Matrix4d covariance = map.of_match(corridor.pairs);
   EXPECT_NEAR(covariance(0, 0), 4.0, 1e-9);
   EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
   EXPECT_NEAR(covariance(2, 2), 0.0, 1e-9);
@@ -75,17 +81,63 @@ TEST(MapUncertainty, EachKeyframeCountsInTheDirectionsItsPairsFixed) {
 // halved again as independent ones would.
 TEST(MapUncertainty, KeyframesThatFixTheSameDirectionAreTakenAsOneError) {
   const MapUncertainty map = three_keyframes();
-  const Eigen::Matrix3d covariance =
+  const Eigen::Matrix4d covariance =
       map.of_match(Pairs{}.wall(1, Vec3::UnitX()).wall(101, Vec3::UnitX()).pairs);
   EXPECT_NEAR(covariance(0, 0), 1.0, 1e-9);
   EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
 }
 
+// A keyframe taken at the origin with its position exact and its heading known to 0.1 rad; the
+// vehicle matches its points 10 m east, between two walls along x (normals y) and two faces
+// across (normals x). A turn of the keyframe by eps moves the walls' points north by 10 eps: the
+// match inherits sigma_y = 10 x 0.1 = 1 m, none along x (the faces turn along their own plane),
+// the keyframe's heading, and the two errors' full correlation (10 x 0.01).
+TEST(MapUncertainty, AKeyframesHeadingErrorReachesAFarMatchByItsLeverArm) {
+  MapUncertainty map;
+  Eigen::Matrix4d heading_only = Eigen::Matrix4d::Zero();
+  heading_only(3, 3) = 0.01;
+  map.add_keyframe(0, Vec3::Zero(), heading_only);
+  const Eigen::Matrix4d far = map.of_match(Pairs{}
+                                               .wall(1, Vec3::UnitY(), Vec3(10.0, 1.0, 0.0))
+                                               .wall(2, Vec3::UnitY(), Vec3(10.0, -1.0, 0.0))
+                                               .wall(3, Vec3::UnitX(), Vec3(11.0, 0.0, 0.0))
+                                               .wall(4, Vec3::UnitX(), Vec3(9.0, 0.0, 0.0))
+                                               .pairs);
+  EXPECT_NEAR(far(0, 0), 0.0, 1e-12);
+  EXPECT_NEAR(far(1, 1), 1.0, 1e-9);
+  EXPECT_NEAR(far(3, 3), 0.01, 1e-12);
+  EXPECT_NEAR(far(1, 3), 0.1, 1e-12);
+  // The same points matched from a keyframe taken beside them: no lever arm, no inherited error.
+  MapUncertainty near;
+  near.add_keyframe(0, Vec3(10.0, 0.0, 0.0), heading_only);
+  const Eigen::Matrix4d beside = near.of_match(Pairs{}
+                                                   .wall(1, Vec3::UnitY(), Vec3(10.0, 1.0, 0.0))
+                                                   .wall(2, Vec3::UnitY(), Vec3(10.0, -1.0, 0.0))
+                                                   .wall(3, Vec3::UnitX(), Vec3(11.0, 0.0, 0.0))
+                                                   .wall(4, Vec3::UnitX(), Vec3(9.0, 0.0, 0.0))
+                                                   .pairs);
+  EXPECT_NEAR((beside.topLeftCorner<3, 3>().norm()), 0.0, 1e-12);
+}
+
+// Moved keyframes turn about their new positions.
+TEST(MapUncertainty, MovedKeyframesTurnAboutTheirNewPositions) {
+  MapUncertainty map;
+  Eigen::Matrix4d heading_only = Eigen::Matrix4d::Zero();
+  heading_only(3, 3) = 0.01;
+  map.add_keyframe(0, Vec3::Zero(), heading_only);
+  EXPECT_THROW(map.move_keyframes({0, 5}, {Vec3::Zero(), Vec3::Zero()}), std::invalid_argument);
+  map.move_keyframes({0}, {Vec3(0.0, 5.0, 0.0)});
+  const Eigen::Matrix4d moved =
+      map.of_match(Pairs{}.wall(1, Vec3::UnitX(), Vec3(0.0, 0.0, 0.0)).pairs);
+  EXPECT_NEAR(moved(0, 0), 25.0 * 0.01, 1e-9);  // 5 m south of the keyframe, along x
+}
+
 TEST(MapUncertainty, AKeyframeThatAddedNothingOwnsNoPoint) {
   MapUncertainty map;
-  map.add_keyframe(0, isotropic(1.0));
-  map.add_keyframe(10, isotropic(9.0));  // every point within the spacing of older ones
-  map.add_keyframe(10, diagonal(2.0, 3.0, 5.0));
+  map.add_keyframe(0, Vec3::Zero(), isotropic(1.0));
+  map.add_keyframe(10, Vec3::Zero(),
+                   isotropic(9.0));  // every point within the spacing of older ones
+  map.add_keyframe(10, Vec3::Zero(), diagonal(2.0, 3.0, 5.0));
   EXPECT_TRUE(map.of_match(Pairs{}.wall(10, Vec3::UnitX()).wall(11, Vec3::UnitY()).floor(12).pairs)
                   .isApprox(diagonal(2.0, 3.0, 5.0)));
   EXPECT_TRUE(map.of_match(Pairs{}.wall(9, Vec3::UnitX()).wall(9, Vec3::UnitY()).floor(9).pairs)
@@ -94,7 +146,7 @@ TEST(MapUncertainty, AKeyframeThatAddedNothingOwnsNoPoint) {
 
 TEST(MapUncertainty, PairsBeforeTheFirstKeyframeOrWithoutInformationCountForNothing) {
   MapUncertainty map;
-  map.add_keyframe(10, isotropic(4.0));
+  map.add_keyframe(10, Vec3::Zero(), isotropic(4.0));
   EXPECT_TRUE(map.of_match(Pairs{}.wall(3, Vec3::UnitX()).pairs).isZero());
   EXPECT_TRUE(map.of_match(Pairs{}.wall(12, Vec3::Zero()).pairs).isZero());  // no normal
 }

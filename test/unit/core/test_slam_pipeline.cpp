@@ -234,6 +234,7 @@ TEST_F(PipelineInRoom, AReplacedMapMovesTheVehicleAndTheHeadingWithIt) {
   moved.linear() = Eigen::AngleAxisd(0.05, Vec3::UnitZ()).toRotationMatrix();
   moved.translation() = Vec3(0.3, -0.2, 0.0);
   MapKeyframe keyframe;
+  keyframe.position = moved * start;
   for (const Vec3& p : slam.map().points()) keyframe.points.push_back(moved * p);
   EXPECT_THROW(slam.replace_map({keyframe, keyframe}, moved, 0.05), std::invalid_argument);
   slam.replace_map({keyframe}, moved, 0.05);
