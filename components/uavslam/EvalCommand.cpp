@@ -166,6 +166,7 @@ int run_scan_pair_eval(const EvalOptions& o) {
     if (a.outcome == ScanOutcome::Accepted) aligned.back() = a.motion;
   }
   const eval::RelationErrors errors = eval::compare_relation_estimates(relations, aligned);
+  if (!o.per_relation.empty()) write_per_relation(o.per_relation, errors);
   if (o.json) {
     const nlohmann::json j = {{"all", subset_json(errors.all)},
                               {"short_span_limit_s", errors.short_span_limit},
@@ -186,10 +187,11 @@ int run_scan_pair_eval(const EvalOptions& o) {
 }
 
 int run_eval(const EvalOptions& o) {
-  if (!o.per_relation.empty() && (o.relations.empty() || !o.scans.empty() || o.consistency)) {
+  if (!o.per_relation.empty() &&
+      (o.relations.empty() || (o.estimate.empty() && o.scans.empty()) || o.consistency)) {
     throw io::ConfigError(
-        "--per-relation lists an estimate's errors: it needs --estimate and "
-        "--relations");
+        "--per-relation lists each relation's errors: it needs --relations and --estimate or "
+        "--scans");
   }
   if (!o.scans.empty()) {
     if (o.relations.empty()) throw io::ConfigError("--scans needs --relations");
@@ -257,8 +259,9 @@ void add_eval_command(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "print JSON instead of text");
   cmd->add_option("--per-relation", options->per_relation,
-                  "with --relations: write each relation's errors to this CSV file "
-                  "(t1,t2,span_s,translation_m,rotation_deg)");
+                  "with --relations and --estimate or --scans: write each relation's errors to "
+                  "this CSV file (t1,t2,span_s,translation_m,rotation_deg; the last two empty "
+                  "where unmatched)");
   cmd->add_flag("--consistency", options->consistency,
                 "with --relations and no --estimate: how well the relations agree with each "
                 "other (their triangles' closure: no estimate agrees with all three relations "

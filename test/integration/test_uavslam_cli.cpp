@@ -514,6 +514,17 @@ TEST_F(UavslamCli, EvalScansScoresTheRelationsAgainstTheScansOwnAlignment) {
       run("eval --relations " + relations_path + " --scans " + path + config);
   EXPECT_EQ(text.exit_code, 0) << text.output;
   EXPECT_THAT(text.output, HasSubstr("over 2 of 3 relations, 1 unmatched"));
+  // Each relation's own figure, to set beside an estimate's (--per-relation with --estimate).
+  const std::string listing = (dir / "scans.csv").string();
+  const CommandResult each = run("eval --relations " + relations_path + " --scans " + path +
+                                 config + " --per-relation " + listing);
+  ASSERT_EQ(each.exit_code, 0) << each.output;
+  std::ifstream listed(listing);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(listed, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_THAT(lines[1], ::testing::StartsWith("100,100.1,0.1"));
+  EXPECT_EQ(lines[3], "100,107,7,,") << "the unmatched relation";
   const CommandResult with_estimate =
       run("eval --relations " + relations_path + " --scans " + path + " --estimate " + path);
   EXPECT_EQ(with_estimate.exit_code, 2) << with_estimate.output;
