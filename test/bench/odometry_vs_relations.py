@@ -8,6 +8,7 @@ odometry agrees with the relation is the matcher's own (docs/real-logs.md).
 usage: odometry_vs_relations.py LOG.clf LOG.relations ESTIMATE.txt [--rows N] [--large 0.1]
 """
 import argparse
+import csv
 import bisect
 import math
 import sys
@@ -49,6 +50,11 @@ def main():
     parser.add_argument("estimate")
     parser.add_argument("--rows", type=int, default=25, help="largest estimate errors listed")
     parser.add_argument("--large", type=float, default=0.1, help="m: an error counted as large")
+    parser.add_argument("--scan-errors", metavar="CSV",
+                        help="each relation's scan alignment error (uavslam eval --relations R "
+                        "--scans LOG --per-relation CSV): the means also over the relations the "
+                        "scans themselves put within --clean of the relation")
+    parser.add_argument("--clean", type=float, default=0.01, help="m, with --scan-errors")
     a = parser.parse_args()
     odo = odometry(a.log)
     if not odo:
@@ -91,6 +97,19 @@ def main():
           "odometry in %d, the odometry also off by more than %.2f m in %d" %
           (len(large), a.large, sum(1 for r in large if r[2] < 0.05), a.large,
            sum(1 for r in large if r[1] > a.large)))
+    if a.scan_errors:
+        by_scans = {}
+        with open(a.scan_errors, encoding="utf-8") as f:
+            for r in csv.DictReader(f):
+                if r["translation_m"]:
+                    by_scans[(round(float(r["t1"]), 6), round(float(r["t2"]), 6))] = float(
+                        r["translation_m"])
+        clean = [r for r in rows if by_scans.get((round(r[3], 6), round(r[4], 6)), 1e9) < a.clean]
+        if clean:
+            print("%d where the scans agree with the relation within %.3f m: estimate %.4f m, "
+                  "odometry %.4f m mean error" %
+                  (len(clean), a.clean, sum(r[0] for r in clean) / len(clean),
+                   sum(r[1] for r in clean) / len(clean)))
 
 
 if __name__ == "__main__":

@@ -351,9 +351,10 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
 // The UAV's configuration is the seed's plus the motion model, the degeneracy analysis, the
 // seed's own suggestion of a periodic heading check, the gate on the motion prior and the back
 // end.
-TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingCheckAndGate) {
+TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingCheckGateAndLines) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
   EXPECT_EQ(config.icp.motion_prior, MotionPrior::Imu);
+  EXPECT_EQ(config.icp.metric, IcpMetric::PointToLine);
   EXPECT_GT(config.degeneracy.threshold, 0.0);
   EXPECT_EQ(config.icp.heading, HeadingMode::PeriodicCheck);
   EXPECT_GT(config.icp.prior_gate, 0.0);
@@ -365,6 +366,7 @@ TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingC
   config.degeneracy.threshold = SlamConfig{}.degeneracy.threshold;
   config.icp.heading = SlamConfig{}.icp.heading;
   config.icp.prior_gate = SlamConfig{}.icp.prior_gate;
+  config.icp.metric = SlamConfig{}.icp.metric;
   expect_default_slam_config(config);
 }
 
