@@ -87,22 +87,27 @@ TEST(MapUncertainty, KeyframesThatFixTheSameDirectionAreTakenAsOneError) {
   EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
 }
 
+// Two walls along x (normals y) and two faces across (normals x) around (10, 0).
+Correspondences walls_around_ten_metres_east() {
+  return Pairs{}
+      .wall(1, Vec3::UnitY(), Vec3(10.0, 1.0, 0.0))
+      .wall(2, Vec3::UnitY(), Vec3(10.0, -1.0, 0.0))
+      .wall(3, Vec3::UnitX(), Vec3(11.0, 0.0, 0.0))
+      .wall(4, Vec3::UnitX(), Vec3(9.0, 0.0, 0.0))
+      .pairs;
+}
+
 // A keyframe taken at the origin with its position exact and its heading known to 0.1 rad; the
 // vehicle matches its points 10 m east, between two walls along x (normals y) and two faces
 // across (normals x). A turn of the keyframe by eps moves the walls' points north by 10 eps: the
 // match inherits sigma_y = 10 x 0.1 = 1 m, none along x (the faces turn along their own plane),
 // the keyframe's heading, and the two errors' full correlation (10 x 0.01).
 TEST(MapUncertainty, AKeyframesHeadingErrorReachesAFarMatchByItsLeverArm) {
-  MapUncertainty map;
   Eigen::Matrix4d heading_only = Eigen::Matrix4d::Zero();
   heading_only(3, 3) = 0.01;
+  MapUncertainty map;
   map.add_keyframe(0, Vec3::Zero(), heading_only);
-  const Eigen::Matrix4d far = map.of_match(Pairs{}
-                                               .wall(1, Vec3::UnitY(), Vec3(10.0, 1.0, 0.0))
-                                               .wall(2, Vec3::UnitY(), Vec3(10.0, -1.0, 0.0))
-                                               .wall(3, Vec3::UnitX(), Vec3(11.0, 0.0, 0.0))
-                                               .wall(4, Vec3::UnitX(), Vec3(9.0, 0.0, 0.0))
-                                               .pairs);
+  const Eigen::Matrix4d far = map.of_match(walls_around_ten_metres_east());
   EXPECT_NEAR(far(0, 0), 0.0, 1e-12);
   EXPECT_NEAR(far(1, 1), 1.0, 1e-9);
   EXPECT_NEAR(far(3, 3), 0.01, 1e-12);
@@ -110,12 +115,7 @@ TEST(MapUncertainty, AKeyframesHeadingErrorReachesAFarMatchByItsLeverArm) {
   // The same points matched from a keyframe taken beside them: no lever arm, no inherited error.
   MapUncertainty near;
   near.add_keyframe(0, Vec3(10.0, 0.0, 0.0), heading_only);
-  const Eigen::Matrix4d beside = near.of_match(Pairs{}
-                                                   .wall(1, Vec3::UnitY(), Vec3(10.0, 1.0, 0.0))
-                                                   .wall(2, Vec3::UnitY(), Vec3(10.0, -1.0, 0.0))
-                                                   .wall(3, Vec3::UnitX(), Vec3(11.0, 0.0, 0.0))
-                                                   .wall(4, Vec3::UnitX(), Vec3(9.0, 0.0, 0.0))
-                                                   .pairs);
+  const Eigen::Matrix4d beside = near.of_match(walls_around_ten_metres_east());
   EXPECT_NEAR((beside.topLeftCorner<3, 3>().norm()), 0.0, 1e-12);
 }
 
