@@ -166,8 +166,8 @@ TEST_F(UavslamCli, TheAutopilotsVelocityCarriesTheCorridorThatABiasedImuLoses) {
 
 // Every 20th scan taken 0.15 s before its stamp (late_scans.yaml): each such scan matches where
 // the vehicle was. The shipped gate on the prior refuses them; without it they pull the pose and
-// the map back each time (with the point-to-line match 0.052 m against 0.036 m; 0.15 m with the
-// seed's point-to-point, which the late scans' own map points hold harder).
+// the map back each time (with the point-to-line match 0.052 m against 0.036 m; 0.196 m with the
+// seed's point-to-point, which holds a scan to the map points it was taken beside).
 TEST_F(UavslamCli, TheGateOnThePriorRefusesLateScans) {
   const nlohmann::json gated = simulate(dir / "uav", "late_scans", "config/slam.yaml");
   const nlohmann::json ungated =
