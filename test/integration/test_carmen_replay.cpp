@@ -1,13 +1,15 @@
 // Replaying CARMEN logs over DDS: lidar_driver and imu_bridge with --source carmen:FILE on one
 // --start-at timeline, into the slam_matcher (--geometry-from-scan) and the recorder, as separate
-// OS processes on their own domains (191, 192; with the odometry prior over `odom`: 196, 197), the
-// test as a ground-side subscriber of `pose` and `matcher_status`.
+// OS processes on their own domains (191, 192; with the odometry prior over `odom`: 196, 197; with
+// the back end, a map server and a ground station: 109), the test as a ground-side subscriber of
+// `pose` and `matcher_status`.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <mutex>
@@ -18,6 +20,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
 
@@ -30,6 +33,7 @@
 #include "dds/Reader.hpp"
 #include "dds/Topics.hpp"
 #include "io/McapListing.hpp"
+#include "io/TumFile.hpp"
 
 namespace uavslam {
 namespace {
@@ -44,6 +48,7 @@ constexpr int kDomain = 191;               // the synthetic log's
 constexpr int kIntelDomain = 192;          // intel.clf's
 constexpr int kOdometryDomain = 196;       // the synthetic log's, with the odometry prior
 constexpr int kIntelOdometryDomain = 197;  // intel.clf's, with the odometry prior
+constexpr int kIntelLoopsDomain = 109;     // intel.clf's, with the back end and the map's processes
 constexpr double kPi = 3.14159265358979323846;
 
 // A 12 x 8 m room with a pillar and a crate; the robot drives 5 m east while turning 0.3 rad.
@@ -341,6 +346,48 @@ TEST_F(CarmenReplay, TheFirst1000ScansOfIntelAreMatchedWithTheOdometryPrior) {
   ASSERT_TRUE(prior) << run.matcher_log;
   EXPECT_EQ(prior->received, 1000u) << run.matcher_log;
   EXPECT_GE(prior->with_prior, run.counts.processed() * 9 / 10) << run.matcher_log;
+}
+
+// The first 2681 scans of intel.clf (about 540 s, with its first loops) replayed over DDS into the
+// matcher with the shipped config for 2D logs, whose back end runs on its own thread, beside a
+// map server and a ground station: the matcher closes a loop and publishes the correction
+// (`keyframe_poses`), the map server moves its keyframes and rebuilds its map, and the ground
+// station writes where the graph now puts them.
+TEST_F(CarmenReplay, IntelsFirstLoopIsClosedOverDdsAndTheMapFollowsIt) {
+  const std::string intel = std::string(UAVSLAM_SOURCE_DIR) + "/../shared/data/freiburg/intel.clf";
+  if (!std::filesystem::exists(intel)) GTEST_SKIP() << intel << " is not there (../shared/data)";
+  process::ChildProcess map_server(
+      node("map_server", kIntelLoopsDomain, {"--publish-period", "0.5"}), log_path("map_server"));
+  const std::string station_out = path("ground_station");
+  process::ChildProcess station(
+      node("ground_station", kIntelLoopsDomain, {"--quiet", "--out", station_out}),
+      log_path("ground_station"));
+  const IntelRun run = replay_intel(intel, kIntelLoopsDomain, 2681, 240s, kLogsConfig);
+  EXPECT_EQ(map_server.stop(10s), 0) << map_server.log();
+  EXPECT_EQ(station.stop(20s), 0) << station.log();
+  ASSERT_FALSE(HasFailure());
+  std::cerr << map_server.log() << station.log();
+
+  static const std::regex loops(R"(loops: (\d+) accepted[^;]*; (\d+) corrections published)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.matcher_log, m, loops)) << run.matcher_log;
+  EXPECT_GT(std::stoi(m[1]), 0) << run.matcher_log;
+  const int published = std::stoi(m[2]);
+  EXPECT_GT(published, 0) << run.matcher_log;
+  static const std::regex applied(R"((\d+) corrections from the back end applied)");
+  const std::string map_log = map_server.log();
+  ASSERT_TRUE(std::regex_search(map_log, m, applied)) << map_log;
+  EXPECT_GE(std::stoi(m[1]), 1) << map_log;
+  EXPECT_LE(std::stoi(m[1]), published) << map_log;
+
+  std::ifstream summary_file(station_out + "/summary.json");
+  ASSERT_TRUE(summary_file) << station.log();
+  const nlohmann::json summary = nlohmann::json::parse(summary_file);
+  EXPECT_GE(summary["back_end"]["corrections_received"].get<int>(), 1) << summary.dump(2);
+  EXPECT_EQ(summary["matcher_status"]["corrections"].get<int>(), published) << summary.dump(2);
+  const std::vector<Pose> keyframes = io::read_tum(station_out + "/keyframes.tum");
+  EXPECT_EQ(keyframes.size(), summary["back_end"]["keyframes_corrected"].get<std::size_t>());
+  EXPECT_GT(keyframes.size(), 50u);
 }
 
 }  // namespace
