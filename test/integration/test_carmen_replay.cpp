@@ -20,9 +20,9 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
+#include <nlohmann/json.hpp>
 
 #include "MatcherListener.hpp"
 #include "ProcessTest.hpp"
