@@ -35,7 +35,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-constexpr int kMapDomain = 172;  // this test's own DDS domains
+constexpr int kMapDomain = 110;  // this test's own DDS domains (172 was test_mcap_replay's too)
 constexpr int kConfigDomain = 173;
 constexpr int kIncompatibleDomain = 174;
 constexpr int kCorrectionDomain = 103;
