@@ -22,8 +22,8 @@
 #include <gtest/gtest.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
-#include <nlohmann/json.hpp>
 
+#include "BackEndCorrections.hpp"
 #include "MatcherListener.hpp"
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
@@ -33,7 +33,6 @@
 #include "dds/Reader.hpp"
 #include "dds/Topics.hpp"
 #include "io/McapListing.hpp"
-#include "io/TumFile.hpp"
 
 namespace uavslam {
 namespace {
@@ -368,26 +367,10 @@ TEST_F(CarmenReplay, IntelsFirstLoopIsClosedOverDdsAndTheMapFollowsIt) {
   ASSERT_FALSE(HasFailure());
   std::cerr << map_server.log() << station.log();
 
-  static const std::regex loops(R"(loops: (\d+) accepted[^;]*; (\d+) corrections published)");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(run.matcher_log, m, loops)) << run.matcher_log;
-  EXPECT_GT(std::stoi(m[1]), 0) << run.matcher_log;
-  const int published = std::stoi(m[2]);
-  EXPECT_GT(published, 0) << run.matcher_log;
-  static const std::regex applied(R"((\d+) corrections from the back end applied)");
-  const std::string map_log = map_server.log();
-  ASSERT_TRUE(std::regex_search(map_log, m, applied)) << map_log;
-  EXPECT_GE(std::stoi(m[1]), 1) << map_log;
-  EXPECT_LE(std::stoi(m[1]), published) << map_log;
-
-  std::ifstream summary_file(station_out + "/summary.json");
-  ASSERT_TRUE(summary_file) << station.log();
-  const nlohmann::json summary = nlohmann::json::parse(summary_file);
-  EXPECT_GE(summary["back_end"]["corrections_received"].get<int>(), 1) << summary.dump(2);
-  EXPECT_EQ(summary["matcher_status"]["corrections"].get<int>(), published) << summary.dump(2);
-  const std::vector<Pose> keyframes = io::read_tum(station_out + "/keyframes.tum");
-  EXPECT_EQ(keyframes.size(), summary["back_end"]["keyframes_corrected"].get<std::size_t>());
-  EXPECT_GT(keyframes.size(), 50u);
+  const std::optional<test::FollowedCorrections> followed =
+      test::expect_corrections_followed(run.matcher_log, map_server.log(), station_out);
+  ASSERT_TRUE(followed) << station.log();
+  EXPECT_GT(followed->keyframes, 50u);
 }
 
 }  // namespace

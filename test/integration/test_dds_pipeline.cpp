@@ -7,7 +7,6 @@
 #include <iterator>
 #include <mutex>
 #include <optional>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -16,8 +15,8 @@
 #include <msg/LaserScanPubSubTypes.h>
 #include <msg/MatcherStatusPubSubTypes.h>
 #include <msg/PosePubSubTypes.h>
-#include <nlohmann/json.hpp>
 
+#include "BackEndCorrections.hpp"
 #include "ProcessTest.hpp"
 #include "common/ChildProcess.hpp"
 #include "dds/Conversions.hpp"
@@ -265,30 +264,16 @@ TEST_F(DdsPipeline, TheBackEndsCorrectionsReachTheMapServer) {
       fly_over_dds(std::string(UAVSLAM_SOURCE_DIR) + "/config/scenarios/yaw_drift.yaml",
                    kLoopDomain, "loops", 7200, true);
   ASSERT_FALSE(HasFailure());
-  static const std::regex loops(R"(loops: (\d+) accepted[^;]*; (\d+) corrections published)");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(flight.matcher_log, m, loops)) << flight.matcher_log;
-  EXPECT_GT(std::stoi(m[1]), 0) << flight.matcher_log;
-  const int published = std::stoi(m[2]);
-  EXPECT_GT(published, 0) << flight.matcher_log;
-  static const std::regex applied(R"((\d+) corrections from the back end applied)");
-  ASSERT_TRUE(std::regex_search(flight.map_server_log, m, applied)) << flight.map_server_log;
-  // Each message holds every keyframe: the server may fold two that came together into one.
-  EXPECT_GE(std::stoi(m[1]), 1);
-  EXPECT_LE(std::stoi(m[1]), published);
+  // Published by the matcher, applied by the map server; the ground station heard the corrections
+  // too and wrote where the keyframes now are.
+  const std::optional<test::FollowedCorrections> followed = test::expect_corrections_followed(
+      flight.matcher_log, flight.map_server_log, flight.ground_station_out);
+  ASSERT_TRUE(followed);
   EXPECT_GE(flight.poses.size(), 6500u) << "of 7201 scans";
   EXPECT_LT(flight.ate_horizontal, 0.25);
-
-  // The ground station heard the corrections too and wrote where the keyframes now are.
-  std::ifstream summary_file(flight.ground_station_out + "/summary.json");
-  const nlohmann::json summary = nlohmann::json::parse(summary_file);
-  EXPECT_GE(summary["back_end"]["corrections_received"].get<int>(), 1);
   // The matcher's status said so as it flew.
-  EXPECT_GT(summary["matcher_status"]["loops_accepted"].get<int>(), 0);
-  EXPECT_EQ(summary["matcher_status"]["corrections"].get<int>(), published);
-  const std::vector<Pose> keyframes = io::read_tum(flight.ground_station_out + "/keyframes.tum");
-  EXPECT_EQ(keyframes.size(), summary["back_end"]["keyframes_corrected"].get<std::size_t>());
-  EXPECT_GT(keyframes.size(), 100u);
+  EXPECT_GT(followed->summary["matcher_status"]["loops_accepted"].get<int>(), 0);
+  EXPECT_GT(followed->keyframes, 100u);
   // And each pose where the final graph puts its keyframe: closer to the truth than as flown.
   const std::vector<Pose> corrected =
       io::read_tum(flight.ground_station_out + "/trajectory_corrected.tum");
