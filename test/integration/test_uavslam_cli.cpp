@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -64,6 +65,36 @@ nlohmann::json simulate(const fs::path& out, const std::string& scenario, const 
   EXPECT_EQ(r.exit_code, 0) << r.output;
   std::ifstream json_file(out / "summary.json");
   return nlohmann::json::parse(json_file);
+}
+
+// The Freiburg logs, where the machine has them.
+const fs::path kFreiburg = fs::path(UAVSLAM_SOURCE_DIR) / ".." / "shared" / "data" / "freiburg";
+
+struct RealLogRun {
+  std::string output;        // what `uavslam run` printed
+  nlohmann::json summary;    // its summary.json
+  nlohmann::json relations;  // `uavslam eval --json` of its estimate against the relations
+};
+
+// `uavslam run` of Freiburg log `log` with the shipped 2D-logs config into out, and its estimate
+// scored against the log's relations; none when either command fails (a failure is recorded).
+std::optional<RealLogRun> run_real_log(const std::string& log, const fs::path& out) {
+  const CommandResult r =
+      run("run --quiet --carmen " + (kFreiburg / (log + ".clf")).string() + " --out " +
+          out.string() + " --config " + source("config/slam_2d_logs.yaml"));
+  if (r.exit_code != 0) {
+    ADD_FAILURE() << "uavslam run exit " << r.exit_code << ":\n" << r.output;
+    return std::nullopt;
+  }
+  const CommandResult e =
+      run("eval --json --relations " + (kFreiburg / (log + ".relations")).string() +
+          " --estimate " + (out / "estimate.txt").string());
+  if (e.exit_code != 0) {
+    ADD_FAILURE() << "uavslam eval exit " << e.exit_code << ":\n" << e.output;
+    return std::nullopt;
+  }
+  std::ifstream json(out / "summary.json");
+  return RealLogRun{r.output, nlohmann::json::parse(json), nlohmann::json::parse(e.output)};
 }
 
 double ate_horizontal(const nlohmann::json& summary) {
@@ -539,19 +570,12 @@ TEST_F(UavslamCli, EvalScansScoresTheRelationsAgainstTheScansOwnAlignment) {
 // starts from by far (odometry alone: 6.5 m / 0.059 m / 2.4 deg). The bounds leave room for the
 // spread docs/real-logs.md reports under tiny perturbations (0.03-0.18 m over all relations).
 TEST_F(UavslamCli, RunCoversTheFr079Log) {
-  const fs::path data = fs::path(UAVSLAM_SOURCE_DIR) / ".." / "shared" / "data" / "freiburg";
-  if (!fs::exists(data / "fr079.clf")) GTEST_SKIP() << "no Freiburg data at " << data;
-  const fs::path out = dir / "fr079";
-  const CommandResult r = run("run --quiet --carmen " + (data / "fr079.clf").string() + " --out " +
-                              out.string() + " --config " + source("config/slam_2d_logs.yaml"));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  std::ifstream json(out / "summary.json");
-  const nlohmann::json summary = nlohmann::json::parse(json);
+  if (!fs::exists(kFreiburg / "fr079.clf")) GTEST_SKIP() << "no Freiburg data at " << kFreiburg;
+  const std::optional<RealLogRun> fr079 = run_real_log("fr079", dir / "fr079");
+  ASSERT_TRUE(fr079);
+  const nlohmann::json& summary = fr079->summary;
   EXPECT_GT(summary["scans"]["accepted"].get<double>(), 0.9 * summary["scans"]["in"].get<double>());
-  const CommandResult e = run("eval --json --relations " + (data / "fr079.relations").string() +
-                              " --estimate " + (out / "estimate.txt").string());
-  ASSERT_EQ(e.exit_code, 0) << e.output;
-  const nlohmann::json figures = nlohmann::json::parse(e.output);
+  const nlohmann::json& figures = fr079->relations;
   EXPECT_EQ(figures["all"]["unmatched"].get<int>(), 0) << "a dead-reckoned pose for every scan";
   EXPECT_LT(figures["all"]["translation_m"]["mean"].get<double>(), 0.5);
   EXPECT_LT(figures["short_span"]["translation_m"]["mean"].get<double>(), 0.04);
@@ -561,20 +585,12 @@ TEST_F(UavslamCli, RunCoversTheFr079Log) {
 // ACES, a building the front end was not developed on: its long corridors drift, and the shipped
 // 2D-logs configuration closes the loops (the back end): all relations 0.122 m without it.
 TEST_F(UavslamCli, RunClosesTheLoopsOfTheAcesLog) {
-  const fs::path data = fs::path(UAVSLAM_SOURCE_DIR) / ".." / "shared" / "data" / "freiburg";
-  if (!fs::exists(data / "aces.clf")) GTEST_SKIP() << "no Freiburg data at " << data;
-  const fs::path out = dir / "aces";
-  const CommandResult r = run("run --quiet --carmen " + (data / "aces.clf").string() + " --out " +
-                              out.string() + " --config " + source("config/slam_2d_logs.yaml"));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_THAT(r.output, HasSubstr("  loops             "));
-  std::ifstream json(out / "summary.json");
-  const nlohmann::json summary = nlohmann::json::parse(json);
-  EXPECT_GT(summary["loops"]["accepted"].get<int>(), 5);
-  const CommandResult e = run("eval --json --relations " + (data / "aces.relations").string() +
-                              " --estimate " + (out / "estimate.txt").string());
-  ASSERT_EQ(e.exit_code, 0) << e.output;
-  const nlohmann::json figures = nlohmann::json::parse(e.output);
+  if (!fs::exists(kFreiburg / "aces.clf")) GTEST_SKIP() << "no Freiburg data at " << kFreiburg;
+  const std::optional<RealLogRun> aces = run_real_log("aces", dir / "aces");
+  ASSERT_TRUE(aces);
+  EXPECT_THAT(aces->output, HasSubstr("  loops             "));
+  EXPECT_GT(aces->summary["loops"]["accepted"].get<int>(), 5);
+  const nlohmann::json& figures = aces->relations;
   EXPECT_EQ(figures["all"]["unmatched"].get<int>(), 0);
   EXPECT_LT(figures["all"]["translation_m"]["mean"].get<double>(), 0.06);
 }
@@ -582,7 +598,7 @@ TEST_F(UavslamCli, RunClosesTheLoopsOfTheAcesLog) {
 // The scans' own alignment on both Freiburg logs: every relation names scans the log has (the
 // stamps are looked up exactly), and nearly every short relation's two scans align.
 TEST_F(UavslamCli, EvalScansFindsEveryRelationsScansInTheFreiburgLogs) {
-  const fs::path data = fs::path(UAVSLAM_SOURCE_DIR) / ".." / "shared" / "data" / "freiburg";
+  const fs::path& data = kFreiburg;
   if (!fs::exists(data / "fr079.clf")) GTEST_SKIP() << "no Freiburg data at " << data;
   for (const std::string log : {"intel", "fr079"}) {
     const CommandResult r =
