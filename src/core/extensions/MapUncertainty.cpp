@@ -34,12 +34,10 @@ Vec3 perp(const Vec3& v) {
   return {-v.y(), v.x(), 0.0};
 }
 
-// What one keyframe's pairs hold of a match: H_k, sum_i H_i perp(d_i - p_k), and their
-// horizontal information (trace).
+// What one keyframe's pairs hold of a match: H_k and sum_i H_i perp(d_i - p_k).
 struct KeyframePairs {
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
   Vec3 turn = Vec3::Zero();
-  double horizontal = 0.0;
 };
 
 }  // namespace
@@ -73,7 +71,6 @@ std::optional<std::size_t> MapUncertainty::keyframe_of(std::size_t index) const 
 Eigen::Matrix4d MapUncertainty::of_match(const Correspondences& pairs) const {
   std::map<std::size_t, KeyframePairs> by_keyframe;
   Eigen::Matrix3d total = Eigen::Matrix3d::Zero();  // H
-  double horizontal = 0.0;
   for (std::size_t i = 0; i < pairs.map_index.size(); ++i) {
     const std::optional<std::size_t> k = keyframe_of(pairs.map_index[i]);
     const Eigen::Matrix3d information = pair_information(pairs, i);
@@ -81,18 +78,17 @@ Eigen::Matrix4d MapUncertainty::of_match(const Correspondences& pairs) const {
     KeyframePairs& own = by_keyframe[*k];
     own.information += information;
     own.turn += information * perp(pairs.map[i] - positions_[*k]);
-    own.horizontal += information.topLeftCorner<2, 2>().trace();
     total += information;
-    horizontal += information.topLeftCorner<2, 2>().trace();
   }
   if (by_keyframe.empty()) return Eigen::Matrix4d::Zero();
+  const double horizontal = total.topLeftCorner<2, 2>().trace();
   const Eigen::Matrix3d inverse = pseudo_inverse(total);
   Eigen::Matrix4d L = Eigen::Matrix4d::Zero();
   for (const auto& [k, own] : by_keyframe) {
     Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
     A.topLeftCorner<3, 3>() = inverse * own.information;
     A.topRightCorner<3, 1>() = inverse * own.turn;
-    A(3, 3) = horizontal > 0.0 ? own.horizontal / horizontal : 0.0;
+    A(3, 3) = horizontal > 0.0 ? own.information.topLeftCorner<2, 2>().trace() / horizontal : 0.0;
     L += A * roots_[k];
   }
   return L * L.transpose();
