@@ -320,7 +320,6 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
   }
   map_uncertainty_.add_keyframe(map_.size(), pose_.position, keyframe_covariance(report));
   report.added_points = map_.add_points(aligned, normals);
-  ++keyframes_;
   last_map_update_position_ = pose_.position;
   last_map_update_heading_ = heading_of(pose_.orientation);
   report.map_updated = true;
@@ -329,9 +328,11 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
 std::vector<std::size_t> SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
                                                    const Eigen::Isometry3d& correction,
                                                    double yaw) {
-  if (keyframes.size() != keyframes_) {
+  // Checked before the map is replaced (MapUncertainty would refuse them only after).
+  if (keyframes.size() != map_uncertainty_.keyframes()) {
     throw std::invalid_argument("replace_map: " + std::to_string(keyframes.size()) +
-                                " keyframes for a map of " + std::to_string(keyframes_));
+                                " keyframes for a map of " +
+                                std::to_string(map_uncertainty_.keyframes()));
   }
   map_ = WorldMap(make_nearest_neighbour_index(config_.nearest_neighbour),
                   config_.map.min_point_spacing);

@@ -142,7 +142,6 @@ class SlamPipeline {
   MapUncertainty map_uncertainty_;
   HeadingDrift heading_drift_;
   Eigen::Matrix4d map_covariance_ = Eigen::Matrix4d::Zero();  // the last match's, (x, y, z, yaw)
-  std::size_t keyframes_ = 0;
 };
 
 }  // namespace uavslam

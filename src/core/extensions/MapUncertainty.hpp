@@ -37,6 +37,8 @@ class MapUncertainty {
   void add_keyframe(std::size_t first_point, const Vec3& position,
                     const Eigen::Matrix4d& covariance);
 
+  std::size_t keyframes() const { return first_points_.size(); }
+
   // The same keyframes, in the same order, now starting at these map indices and taken at these
   // positions (the map was rebuilt); throws std::invalid_argument for another count.
   void move_keyframes(const std::vector<std::size_t>& first_points,
