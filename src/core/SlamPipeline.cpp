@@ -325,9 +325,8 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
   report.map_updated = true;
 }
 
-std::vector<std::size_t> SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
-                                                   const Eigen::Isometry3d& correction,
-                                                   double yaw) {
+void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
+                               const Eigen::Isometry3d& correction, double yaw) {
   // Checked before the map is replaced (MapUncertainty would refuse them only after).
   if (keyframes.size() != map_uncertainty_.keyframes()) {
     throw std::invalid_argument("replace_map: " + std::to_string(keyframes.size()) +
@@ -350,7 +349,6 @@ std::vector<std::size_t> SlamPipeline::replace_map(const std::vector<MapKeyframe
   pose_.orientation = yaw_rotation(yaw) * pose_.orientation;
   last_map_update_position_ = correction * last_map_update_position_;
   last_map_update_heading_ = std::remainder(last_map_update_heading_ + yaw, 2.0 * M_PI);
-  return first_points;
 }
 
 }  // namespace uavslam

@@ -89,14 +89,19 @@ class SlamPipeline {
   // Beyond the seed (the pose-graph back end, loop_closure): the map rebuilt from its keyframes,
   // one per keyframe made so far and in that order, where an optimisation moved them; the vehicle
   // moves with the newest one: `correction` takes the old map frame to the new, a turn of `yaw`
-  // rad about the vertical and a shift. Returns each keyframe's first point in the new map.
-  // Throws std::invalid_argument for another keyframe count.
-  std::vector<std::size_t> replace_map(const std::vector<MapKeyframe>& keyframes,
-                                       const Eigen::Isometry3d& correction, double yaw);
+  // rad about the vertical and a shift (keyframe_starts() then indexes the new map). Throws
+  // std::invalid_argument for another keyframe count.
+  void replace_map(const std::vector<MapKeyframe>& keyframes, const Eigen::Isometry3d& correction,
+                   double yaw);
 
   const WorldMap& map() const { return map_; }
   const Pose& pose() const { return pose_; }
   const SlamConfig& config() const { return config_; }
+  // Each keyframe's first point in the map, in keyframe order (a keyframe that added nothing
+  // shares its start with the next).
+  const std::vector<std::size_t>& keyframe_starts() const {
+    return map_uncertainty_.first_points();
+  }
   // rad about the vertical: what the matcher has added to the orientation source's heading so
   // far (always 0 with icp.heading: source, the seed).
   double heading_correction() const { return heading_correction_; }

@@ -118,8 +118,7 @@ void VehicleSlam::add_dense(const Scan& scan, const ScanReport& report, const Ke
 // The keyframe, with the points (and normals) it added to the map, to the back end.
 void VehicleSlam::add_to_graph(const ScanReport& report) {
   const WorldMap& map = pipeline_.map();
-  const std::size_t first = map.size() - report.added_points.size();
-  keyframe_starts_.push_back(first);
+  const std::size_t first = pipeline_.keyframe_starts().back();
   keyframe_poses_.push_back(backend::node_of(report.pose));
   keyframe_stamps_.push_back(report.pose.stamp);
   GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_};
@@ -139,11 +138,12 @@ bool VehicleSlam::apply_graph_update() {
   const backend::MapCorrection& correction = update->correction;
   std::vector<MapKeyframe> keyframes = std::move(update->keyframes);
   const WorldMap& map = pipeline_.map();
-  for (std::size_t k = keyframes.size(); k < keyframe_starts_.size(); ++k) {
-    const std::size_t end = k + 1 < keyframe_starts_.size() ? keyframe_starts_[k + 1] : map.size();
+  const std::vector<std::size_t>& starts = pipeline_.keyframe_starts();
+  for (std::size_t k = keyframes.size(); k < starts.size(); ++k) {
+    const std::size_t end = k + 1 < starts.size() ? starts[k + 1] : map.size();
     MapKeyframe moved;
     moved.position = correction.transform * keyframe_poses_[k].position;
-    for (std::size_t i = keyframe_starts_[k]; i < end; ++i) {
+    for (std::size_t i = starts[k]; i < end; ++i) {
       moved.points.push_back(correction.transform * map.point(i));
       if (!map.normals().empty()) {
         moved.normals.push_back(correction.transform.linear() * map.normals()[i]);
@@ -151,7 +151,7 @@ bool VehicleSlam::apply_graph_update() {
     }
     keyframes.push_back(std::move(moved));
   }
-  keyframe_starts_ = pipeline_.replace_map(keyframes, correction.transform, correction.yaw);
+  pipeline_.replace_map(keyframes, correction.transform, correction.yaw);
   if (inertial_) inertial_->reanchor(correction.transform);
   for (std::size_t k = 0; k < keyframe_poses_.size(); ++k) {
     keyframe_poses_[k] =

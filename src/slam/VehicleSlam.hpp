@@ -137,7 +137,6 @@ class VehicleSlam {
   std::unique_ptr<OccupancyOctree> occupancy_;
   std::unique_ptr<GraphWorker> graph_;
   std::size_t frame_ = 0;                          // the back end's updates applied
-  std::vector<std::size_t> keyframe_starts_;       // each keyframe's first point in the map
   std::vector<backend::NodePose> keyframe_poses_;  // in the map's current frame
   std::vector<double> keyframe_stamps_;
   std::vector<backend::NodePose> final_poses_;  // the graph's after finish()

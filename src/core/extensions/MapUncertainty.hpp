@@ -38,6 +38,8 @@ class MapUncertainty {
                     const Eigen::Matrix4d& covariance);
 
   std::size_t keyframes() const { return first_points_.size(); }
+  // Each keyframe's first point in the map, in keyframe order.
+  const std::vector<std::size_t>& first_points() const { return first_points_; }
 
   // The same keyframes, in the same order, now starting at these map indices and taken at these
   // positions (the map was rebuilt); throws std::invalid_argument for another count.
