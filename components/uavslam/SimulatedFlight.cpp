@@ -154,6 +154,7 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
   run.outcomes = slam.pipeline().outcome_counts();
   run.map = slam.pipeline().map().points();
   run.keyframes = slam.keyframes();
+  run.heading_drift = slam.pipeline().heading_drift();
   if (progress) progress(run.scans_in, log.scans.size());
   return run;
 }

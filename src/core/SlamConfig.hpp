@@ -186,6 +186,10 @@ struct SlamConfig {
     // (the matcher takes roll and pitch from the source, and the heading unless it corrects it).
     double attitude_sigma = 0.0175;  // roll and pitch: an autopilot's attitude, about 1 degree
     double heading_sigma = 0.035;    // yaw: about 2 degrees
+    // rad/s, 1 sigma: how fast the source's heading may drift (its gyro's bias), the prior of the
+    // drift that heading checks learn and correct for (extensions/HeadingRate); 0: none is learnt
+    // (the seed takes the source as it is).
+    double heading_drift_sigma = 0.0;
   } imu;
 
   // Beyond the seed: the pose-graph back end (src/backend/KeyframeGraph). Keyframes become the

@@ -32,7 +32,8 @@ SlamPipeline::SlamPipeline(const SlamConfig& config, const Vec3& initial_positio
       imu_(config.imu.max_gap),
       map_(make_nearest_neighbour_index(config.nearest_neighbour), config.map.min_point_spacing),
       matcher_(config.icp),
-      gate_(config.icp.prior_gate, config.icp.prior_gate_overrule) {
+      gate_(config.icp.prior_gate, config.icp.prior_gate_overrule),
+      heading_rate_(config.imu.heading_drift_sigma) {
   pose_.position = initial_position;
 }
 
@@ -51,6 +52,8 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     report.outcome = ScanOutcome::NoImu;
     return finish(report);
   }
+  follow_heading_drift(scan.stamp);
+  drift_check_.reset();
   Eigen::Quaterniond orientation = corrected(*source_orientation);
   ProjectedScan projected = project_scan(scan, orientation);
   report.invalid_ranges = projected.invalid;
@@ -116,6 +119,12 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     report.prior_overruled = verdict == PriorGate::Verdict::Overrules;
   }
 
+  // A scan the gate let through: its check, if it made one before a keyframe, says how the
+  // source drifts (one the gate refused, a late scan's, says nothing).
+  if (drift_check_) {
+    heading_rate_.add_check(drift_check_->disagreement, drift_check_->span, drift_check_->applied);
+  }
+
   // The heading the scan agreed with becomes the correction for this and later scans.
   if (match.yaw != 0.0) {
     heading_correction_ = std::remainder(heading_correction_ + match.yaw, 2.0 * M_PI);
@@ -175,6 +184,12 @@ MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted)
     MatchResult checked = matcher_.match(map_, points, start, true, &nearest_);
     if (checked.outcome == ScanOutcome::Accepted) {
       heading_drift_.add_check(checked.yaw);
+      // The drift from the checks before keyframes only: those between two keyframes see the
+      // same map from nearly the same place and share its noise, which a rate learnt from all of
+      // them took for a drift (demo.yaml, seed 2: 1 degree a minute for 15 s).
+      if (moved_enough_for_map_update(predicted)) {
+        drift_check_ = drift_check(checked, predicted.stamp);
+      }
       if (std::abs(checked.yaw) > config_.icp.heading_check_tolerance) return checked;
     }
   }
@@ -264,6 +279,33 @@ Eigen::Matrix4d SlamPipeline::keyframe_covariance(const ScanReport& report) cons
   return covariance;
 }
 
+// Beyond the seed: the source's heading drift as the checks have learnt it (extensions/
+// HeadingRate), added to the correction since the last scan.
+void SlamPipeline::follow_heading_drift(double stamp) {
+  if (config_.icp.heading == HeadingMode::PeriodicCheck && drift_followed_until_ &&
+      stamp > *drift_followed_until_) {
+    heading_correction_ = std::remainder(
+        heading_correction_ + heading_rate_.rate() * (stamp - *drift_followed_until_), 2.0 * M_PI);
+  }
+  drift_followed_until_ = stamp;
+}
+
+// A check's disagreement against the map its pairs hold, made on average at t_map with the
+// correction H(t_map) then (each keyframe weighted by its share of the heading).
+std::optional<SlamPipeline::DriftCheck> SlamPipeline::drift_check(const MatchResult& check,
+                                                                  double stamp) const {
+  double weight = 0.0;
+  double made = 0.0;
+  double applied = 0.0;
+  for (const auto& [k, share] : map_uncertainty_.heading_shares(check.pairs)) {
+    weight += share;
+    made += share * keyframe_stamps_[k];
+    applied += share * std::remainder(heading_correction_ - keyframe_headings_[k], 2.0 * M_PI);
+  }
+  if (weight <= 0.0) return std::nullopt;
+  return DriftCheck{check.yaw, stamp - made / weight, applied / weight};
+}
+
 // The covariance of the predicted position: the prior's own, turned into the corrected heading;
 // with no motion model, the last pose's grown by recovery.max_speed per second since it.
 Eigen::Matrix3d SlamPipeline::predicted_covariance(const MotionPrediction& prediction,
@@ -319,6 +361,8 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
     normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
   }
   map_uncertainty_.add_keyframe(map_.size(), pose_.position, keyframe_covariance(report));
+  keyframe_stamps_.push_back(pose_.stamp);
+  keyframe_headings_.push_back(heading_correction_);
   report.added_points = map_.add_points(aligned, normals);
   last_map_update_position_ = pose_.position;
   last_map_update_heading_ = heading_of(pose_.orientation);

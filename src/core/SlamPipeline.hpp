@@ -16,6 +16,7 @@
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
 #include "core/extensions/HeadingDrift.hpp"
+#include "core/extensions/HeadingRate.hpp"
 #include "core/extensions/MapUncertainty.hpp"
 #include "core/extensions/MatchNoise.hpp"
 #include "core/extensions/PriorAgreement.hpp"
@@ -97,6 +98,11 @@ class SlamPipeline {
   const WorldMap& map() const { return map_; }
   const Pose& pose() const { return pose_; }
   const SlamConfig& config() const { return config_; }
+  // rad/s: how fast the orientation source's heading drifts, as the checks have learnt it
+  // (extensions/HeadingRate); the correction turns back by as much. 0 while none is shown.
+  double heading_drift() const {
+    return config_.icp.heading == HeadingMode::PeriodicCheck ? -heading_rate_.rate() : 0.0;
+  }
   // Each keyframe's first point in the map, in keyframe order (a keyframe that added nothing
   // shares its start with the next).
   const std::vector<std::size_t>& keyframe_starts() const {
@@ -120,6 +126,14 @@ class SlamPipeline {
   ScanPoints scan_points(const ProjectedScan& projected) const;
   Eigen::Matrix4d map_part(const ScanReport& report, const MatchResult& match) const;
   Eigen::Matrix4d keyframe_covariance(const ScanReport& report) const;
+  void follow_heading_drift(double stamp);
+  // What a check before a keyframe says of the source's drift (HeadingRate::add_check's terms).
+  struct DriftCheck {
+    double disagreement = 0.0;
+    double span = 0.0;
+    double applied = 0.0;
+  };
+  std::optional<DriftCheck> drift_check(const MatchResult& check, double stamp) const;
   Eigen::Matrix3d predicted_covariance(const MotionPrediction& prediction, double stamp) const;
   // `prior`: predicted_covariance at the scan, computed once per scan for these.
   ScanReport carried_by_prior(ScanReport& report, const Pose& start, const Eigen::Matrix3d& prior);
@@ -147,6 +161,11 @@ class SlamPipeline {
   MapUncertainty map_uncertainty_;
   HeadingDrift heading_drift_;
   Eigen::Matrix4d map_covariance_ = Eigen::Matrix4d::Zero();  // the last match's, (x, y, z, yaw)
+  HeadingRate heading_rate_;
+  std::optional<double> drift_followed_until_;  // the stamp the drift was added up to
+  std::optional<DriftCheck> drift_check_;       // this scan's, until the gate has judged it
+  std::vector<double> keyframe_stamps_;         // one per keyframe, with
+  std::vector<double> keyframe_headings_;       // the heading correction then
 };
 
 }  // namespace uavslam

@@ -195,6 +195,10 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.imu.heading_sigma = v.as_double(NumberRange::positive());
        }},
+      {"imu", "heading_drift_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.imu.heading_drift_sigma = v.as_double(NumberRange::non_negative());
+       }},
       {"loop_closure", "enabled",
        [](SlamConfig& c, const YamlReader& v) { c.loop_closure.enabled = v.as_bool(); }},
       {"loop_closure", "step_sigma",

@@ -223,10 +223,29 @@ TEST_F(UavslamCli, TheShippedConfigCorrectsTheImusYawDrift) {
   EXPECT_GT(trusted, 0.3);
 }
 
+// The same drift seen by the heading checks against old map: the shipped config learns it (2
+// degrees a minute, the scenario's) and turns the heading back as it goes, so the keyframes stop
+// joining the map turned by it. Without (imu.heading_drift_sigma 0) a check against the last
+// keyframes sees only the drift since they were made, under its tolerance, and the map turns
+// (0.118 m against 0.097 m followed; the map made before the drift is learnt keeps what the
+// checks had not corrected of it).
+TEST_F(UavslamCli, TheHeadingChecksLearnTheImusDriftAndFollowIt) {
+  const std::string no_loops = "--set loop_closure.enabled=false";
+  const nlohmann::json followed = simulate(dir / "uav", "yaw_drift", "config/slam.yaml", no_loops);
+  const nlohmann::json unfollowed = simulate(dir / "still", "yaw_drift", "config/slam.yaml",
+                                             no_loops + " --set imu.heading_drift_sigma=0");
+  EXPECT_NEAR(followed.at("heading_drift_deg_per_min").get<double>(), 2.0, 0.2);
+  EXPECT_EQ(unfollowed.at("heading_drift_deg_per_min").get<double>(), 0.0);
+  EXPECT_LT(ate_horizontal(followed), 0.9 * ate_horizontal(unfollowed));
+  // A steady IMU (demo.yaml): nothing to learn, nothing followed.
+  const nlohmann::json steady = simulate(dir / "demo", "demo", "config/slam.yaml", no_loops);
+  EXPECT_EQ(steady.at("heading_drift_deg_per_min").get<double>(), 0.0);
+}
+
 // The same drifting IMU with the back end on: the flight comes back through the rooms it mapped,
 // the loops found there are optimised into the keyframe graph, and the map and the pose move with
 // it. Both what the vehicle flew on and the final graph's poses beat the front end alone (the
-// graph's by 22 %: 0.113 against 0.144 m).
+// graph's by 13 %: 0.108 against 0.124 m; 22 % before the front end followed the drift itself).
 TEST_F(UavslamCli, TheBackEndClosesTheLoopsOfAFlightWhoseImuDrifts) {
   const nlohmann::json alone =
       simulate(dir / "alone", "yaw_drift", "config/slam.yaml", "--set loop_closure.enabled=false");
@@ -236,12 +255,12 @@ TEST_F(UavslamCli, TheBackEndClosesTheLoopsOfAFlightWhoseImuDrifts) {
   EXPECT_FALSE(alone.contains("loops"));
   const double after = closed.at("trajectory_errors_after_loops").at("ate_rmse_m").get<double>();
   EXPECT_LT(ate_horizontal(closed), ate_horizontal(alone));
-  EXPECT_LT(after, 0.85 * alone.at("trajectory_errors").at("ate_rmse_m").get<double>());
+  EXPECT_LT(after, 0.92 * alone.at("trajectory_errors").at("ate_rmse_m").get<double>());
 }
 
 // Out through a door, around another room and back (two_rooms.yaml, the IMU's heading
 // drifting): coming back, the first room's map is where the drift left it. The back end finds
-// the loop there and the final graph puts the flight back where it was (0.146 -> 0.123 m).
+// the loop there and the final graph puts the flight back where it was (0.145 -> 0.120 m).
 TEST_F(UavslamCli, TheBackEndClosesTheLoopThroughTheOtherRoom) {
   const nlohmann::json alone =
       simulate(dir / "alone", "two_rooms", "config/slam.yaml", "--set loop_closure.enabled=false");

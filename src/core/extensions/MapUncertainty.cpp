@@ -34,12 +34,6 @@ Vec3 perp(const Vec3& v) {
   return {-v.y(), v.x(), 0.0};
 }
 
-// What one keyframe's pairs hold of a match: H_k and sum_i H_i perp(d_i - p_k).
-struct KeyframePairs {
-  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
-  Vec3 turn = Vec3::Zero();
-};
-
 }  // namespace
 
 void MapUncertainty::add_keyframe(std::size_t first_point, const Vec3& position,
@@ -68,23 +62,28 @@ std::optional<std::size_t> MapUncertainty::keyframe_of(std::size_t index) const 
   return static_cast<std::size_t>(after - first_points_.begin()) - 1;
 }
 
-Eigen::Matrix4d MapUncertainty::of_match(const Correspondences& pairs) const {
-  std::map<std::size_t, KeyframePairs> by_keyframe;
-  Eigen::Matrix3d total = Eigen::Matrix3d::Zero();  // H
+// Each keyframe's pairs, H_k and sum_i H_i perp(d_i - p_k), and H.
+MapUncertainty::Grouped MapUncertainty::by_keyframe(const Correspondences& pairs) const {
+  Grouped grouped;
   for (std::size_t i = 0; i < pairs.map_index.size(); ++i) {
     const std::optional<std::size_t> k = keyframe_of(pairs.map_index[i]);
     const Eigen::Matrix3d information = pair_information(pairs, i);
     if (!k || information.isZero()) continue;
-    KeyframePairs& own = by_keyframe[*k];
+    KeyframePairs& own = grouped.keyframes[*k];
     own.information += information;
     own.turn += information * perp(pairs.map[i] - positions_[*k]);
-    total += information;
+    grouped.total += information;
   }
-  if (by_keyframe.empty()) return Eigen::Matrix4d::Zero();
-  const double horizontal = total.topLeftCorner<2, 2>().trace();
-  const Eigen::Matrix3d inverse = pseudo_inverse(total);
+  return grouped;
+}
+
+Eigen::Matrix4d MapUncertainty::of_match(const Correspondences& pairs) const {
+  const Grouped grouped = by_keyframe(pairs);
+  if (grouped.keyframes.empty()) return Eigen::Matrix4d::Zero();
+  const double horizontal = grouped.total.topLeftCorner<2, 2>().trace();
+  const Eigen::Matrix3d inverse = pseudo_inverse(grouped.total);
   Eigen::Matrix4d L = Eigen::Matrix4d::Zero();
-  for (const auto& [k, own] : by_keyframe) {
+  for (const auto& [k, own] : grouped.keyframes) {
     Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
     A.topLeftCorner<3, 3>() = inverse * own.information;
     A.topRightCorner<3, 1>() = inverse * own.turn;
@@ -92,6 +91,19 @@ Eigen::Matrix4d MapUncertainty::of_match(const Correspondences& pairs) const {
     L += A * roots_[k];
   }
   return L * L.transpose();
+}
+
+std::vector<std::pair<std::size_t, double>> MapUncertainty::heading_shares(
+    const Correspondences& pairs) const {
+  const Grouped grouped = by_keyframe(pairs);
+  const double horizontal = grouped.total.topLeftCorner<2, 2>().trace();
+  std::vector<std::pair<std::size_t, double>> shares;
+  if (horizontal <= 0.0) return shares;
+  for (const auto& [k, own] : grouped.keyframes) {
+    const double share = own.information.topLeftCorner<2, 2>().trace() / horizontal;
+    if (share > 0.0) shares.emplace_back(k, share);
+  }
+  return shares;
 }
 
 }  // namespace uavslam

@@ -23,7 +23,9 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "core/Correspondences.hpp"
@@ -49,8 +51,22 @@ class MapUncertainty {
   // Sigma_map above over (x, y, z, yaw) for the pairs (their map point and map_index, and the
   // information pair_information gives them); zero when no pair holds information.
   Eigen::Matrix4d of_match(const Correspondences& pairs) const;
+  // s_k above: each keyframe's share of the pairs' horizontal information, the weight its heading
+  // has in the heading the map holds where the pairs are (keyframes with none left out).
+  std::vector<std::pair<std::size_t, double>> heading_shares(const Correspondences& pairs) const;
 
  private:
+  // What one keyframe's pairs hold of a match: H_k and sum_i H_i perp(d_i - p_k).
+  struct KeyframePairs {
+    Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+    Vec3 turn = Vec3::Zero();
+  };
+  struct Grouped {
+    std::map<std::size_t, KeyframePairs> keyframes;
+    Eigen::Matrix3d total = Eigen::Matrix3d::Zero();  // H
+  };
+  Grouped by_keyframe(const Correspondences& pairs) const;
+
   // The keyframe that added map point `index`; none before the first keyframe's points.
   std::optional<std::size_t> keyframe_of(std::size_t index) const;
 

@@ -87,6 +87,24 @@ TEST(MapUncertainty, KeyframesThatFixTheSameDirectionAreTakenAsOneError) {
   EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
 }
 
+// Each keyframe's weight in the heading the map holds where the pairs are: its share of their
+// horizontal information (floor pairs hold none).
+TEST(MapUncertainty, AKeyframesHeadingShareIsItsShareOfTheWallPairs) {
+  const MapUncertainty map = three_keyframes();
+  const auto shares = map.heading_shares(Pairs{}
+                                             .wall(1, Vec3::UnitX())
+                                             .wall(2, Vec3::UnitY())
+                                             .wall(3, Vec3::UnitX())
+                                             .wall(120, Vec3::UnitY())
+                                             .floor(160)
+                                             .pairs);
+  ASSERT_EQ(shares.size(), 2u);
+  EXPECT_EQ(shares[0].first, 0u);
+  EXPECT_NEAR(shares[0].second, 0.75, 1e-12);
+  EXPECT_EQ(shares[1].first, 1u);
+  EXPECT_NEAR(shares[1].second, 0.25, 1e-12);
+}
+
 // Two walls along x (normals y) and two faces across (normals x) around (10, 0).
 Correspondences walls_around_ten_metres_east() {
   return Pairs{}

@@ -1,0 +1,57 @@
+// How fast the orientation source's heading drifts (beyond the seed): an autopilot's yaw without a
+// magnetometer walks off with its gyro's bias, degrees per minute, and every keyframe made
+// meanwhile joins the map turned by it. Checked against the map (icp.heading: periodic_check), the
+// drift shows, but only against old map: a check against the last keyframes sees the drift since
+// they were made, seconds' worth, under heading_check_tolerance; the map turns along with the
+// vehicle (yaw_drift.yaml: the keyframes 1 degree off on average with a 0.57 degree tolerance).
+//
+// A check at t against map made, on average, at t_map (its keyframes' times weighted by their
+// share of the heading, MapUncertainty::heading_shares) measures the drift over the span
+// dt = t - t_map. With H the heading correction the pipeline applied (at t, and when each
+// keyframe was made, the same weighting) and d the check's disagreement (the turn it wants),
+//   m = d + H(t) - H(t_map) = c + r dt + noise
+// whatever was applied in between: r is the rate at which the correction has to grow to hold
+// the heading still on the map, c how far the heading is off the map whatever the span (a check
+// that finds it under heading_check_tolerance leaves it there). A drift grows with the span, an
+// offset does not: a line through checks of like spans would take a steady 0.1 degree offset
+// for 2 degrees a minute (demo.yaml, seed 7). The line is fitted by least squares over the
+// checks, the rate against a prior r ~ N(0, sigma_r^2) (imu.heading_drift_sigma), the noise
+// sigma_d^2 the line's residual variance:
+//   r = S_tm / (S_tt + sigma_d^2 / sigma_r^2),   S_tt = sum (dt - mean dt)^2,
+//   S_tm = sum (dt - mean dt)(m - mean m)
+// with the standard error sigma_d / sqrt(S_tt + sigma_d^2 / sigma_r^2). A rate within three of
+// them, or from fewer than 30 checks, is taken as none. The pipeline adds r dt to the correction
+// at every scan (the gyro-bias estimate of a LiDAR-inertial filter, here learnt from the map
+// alone), and feeds this only checks made before keyframes whose scan the gate on the prior let
+// through.
+#pragma once
+
+#include <cstddef>
+
+namespace uavslam {
+
+class HeadingRate {
+ public:
+  // prior_sigma: sigma_r above (rad/s); 0: no drift is ever learnt.
+  explicit HeadingRate(double prior_sigma) : prior_sigma_(prior_sigma) {}
+
+  // A check: its disagreement d (rad), the span dt = t - t_map (s) and the correction applied
+  // over it, H(t) - H(t_map) (rad). Spans that are not positive say nothing of a rate.
+  void add_check(double disagreement, double span, double applied);
+
+  // r above (rad/s); 0 before 30 checks, without a prior, or while within three standard
+  // errors.
+  double rate() const;
+
+ private:
+  double prior_sigma_;
+  // Over the checks: their count and the sums of dt, m, dt^2, dt m and m^2.
+  std::size_t n_ = 0;
+  double t_ = 0.0;
+  double m_ = 0.0;
+  double tt_ = 0.0;
+  double tm_ = 0.0;
+  double mm_ = 0.0;
+};
+
+}  // namespace uavslam

@@ -1,0 +1,92 @@
+// The orientation source's heading drift, learnt from checks against map of known age: what the
+// checks see over long spans is the drift; what they see over short ones is mostly their noise.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "core/extensions/HeadingRate.hpp"
+
+namespace uavslam {
+namespace {
+
+constexpr double kPerMinute = 1.0 / 60.0;
+constexpr double kDegree = 3.14159265358979 / 180.0;
+
+// A source drifting 2 degrees a minute, nothing applied yet: each check disagrees by the drift
+// over its span (plus 1.5 mrad of noise), spans of 1 to 60 s.
+TEST(HeadingRate, ASteadyDriftIsLearntFromTheChecks) {
+  const double drift = -2.0 * kDegree * kPerMinute;  // the rate the correction must follow
+  std::mt19937 random(3);
+  std::normal_distribution<double> noise(0.0, 0.0015);
+  std::uniform_real_distribution<double> span(1.0, 60.0);
+  HeadingRate rate(5.0 * kDegree * kPerMinute);
+  for (int k = 0; k < 400; ++k) {
+    const double dt = span(random);
+    rate.add_check(drift * dt + noise(random), dt, 0.0);
+  }
+  EXPECT_NEAR(rate.rate(), drift, 0.05 * std::abs(drift));
+}
+
+// What was applied over a span counts: the same drift, half of it already followed, the checks
+// see the other half and the rate is the whole.
+TEST(HeadingRate, WhatWasAppliedIsPartOfTheDrift) {
+  const double drift = 1.0 * kDegree * kPerMinute;
+  HeadingRate rate(5.0 * kDegree * kPerMinute);
+  for (int k = 1; k <= 100; ++k) {
+    const double dt = 0.5 * k;
+    rate.add_check(0.5 * drift * dt, dt, 0.5 * drift * dt);
+  }
+  EXPECT_NEAR(rate.rate(), drift, 1e-3 * drift);
+}
+
+// A steady source: the checks' noise over like spans is no drift, however many of them.
+TEST(HeadingRate, NoiseOverShortSpansIsNoDrift) {
+  std::mt19937 random(11);
+  std::normal_distribution<double> noise(0.0, 0.0015);
+  HeadingRate rate(5.0 * kDegree * kPerMinute);
+  EXPECT_EQ(rate.rate(), 0.0);
+  for (int k = 0; k < 2000; ++k) rate.add_check(noise(random), 0.5, 0.0);
+  EXPECT_EQ(rate.rate(), 0.0);
+}
+
+// Fewer than 30 checks: not believed, however clear.
+TEST(HeadingRate, AFewChecksAreNotBelieved) {
+  const double drift = 2.0 * kDegree * kPerMinute;
+  HeadingRate rate(5.0 * kDegree * kPerMinute);
+  for (int k = 1; k < 30; ++k) rate.add_check(drift * k, double(k), 0.0);
+  EXPECT_EQ(rate.rate(), 0.0);
+  rate.add_check(drift * 30.0, 30.0, 0.0);
+  EXPECT_NEAR(rate.rate(), drift, 1e-9);
+}
+
+// A heading off the map by a steady 2 mrad (under the check's tolerance, never corrected): the
+// checks disagree by it whatever their span, an offset, not a drift; a drift on top is found.
+TEST(HeadingRate, AnOffsetThatDoesNotGrowWithTheSpanIsNoDrift) {
+  std::mt19937 random(5);
+  std::normal_distribution<double> noise(0.0, 0.0015);
+  std::uniform_real_distribution<double> span(1.0, 5.0);
+  HeadingRate offset(5.0 * kDegree * kPerMinute);
+  HeadingRate drifting(5.0 * kDegree * kPerMinute);
+  const double drift = 2.0 * kDegree * kPerMinute;
+  for (int k = 0; k < 400; ++k) {
+    const double dt = span(random);
+    offset.add_check(0.002 + noise(random), dt, 0.0);
+    drifting.add_check(0.002 + drift * dt + noise(random), dt, 0.0);
+  }
+  EXPECT_EQ(offset.rate(), 0.0);
+  EXPECT_NEAR(drifting.rate(), drift, 0.25 * drift);
+}
+
+TEST(HeadingRate, NothingIsLearntWithoutAPriorOrASpan) {
+  HeadingRate off(0.0);
+  HeadingRate on(5.0 * kDegree * kPerMinute);
+  for (int k = 0; k < 100; ++k) {
+    off.add_check(0.01, 30.0, 0.0);
+    on.add_check(0.01, 0.0, 0.0);  // the check matched map made at its own time
+  }
+  EXPECT_EQ(off.rate(), 0.0);
+  EXPECT_EQ(on.rate(), 0.0);
+}
+
+}  // namespace
+}  // namespace uavslam
