@@ -3,7 +3,7 @@
 // meanwhile joins the map turned by it. Checked against the map (icp.heading: periodic_check), the
 // drift shows, but only against old map: a check against the last keyframes sees the drift since
 // they were made, seconds' worth, under heading_check_tolerance; the map turns along with the
-// vehicle (yaw_drift.yaml: the keyframes 1 degree off on average with a 0.57 degree tolerance).
+// vehicle until it comes back to old map (yaw_drift.yaml).
 //
 // A check at t against map made, on average, at t_map (its keyframes' times weighted by their
 // share of the heading, MapUncertainty::heading_shares) measures the drift over the span
