@@ -72,8 +72,8 @@ struct SlamRun {
   TrackingCounts tracking;
   std::vector<eval::Nees> nees;         // of every accepted scan whose pose has a covariance
   std::vector<double> prior_distances;  // sigmas, of every accepted match measured against a prior
-  double heading_drift =
-      0.0;  // rad/s: the IMU's, as the heading checks learnt it (0: none followed)
+  // rad/s: the IMU's heading drift, as the heading checks learnt it (0: none followed).
+  double heading_drift = 0.0;
   Points map;
   double wall_seconds = 0.0;  // whole run, pipeline only
   bool stopped_early = false;

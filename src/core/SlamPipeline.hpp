@@ -108,6 +108,8 @@ class SlamPipeline {
   const std::vector<std::size_t>& keyframe_starts() const {
     return map_uncertainty_.first_points();
   }
+  // Each keyframe's scan stamp, in keyframe order.
+  const std::vector<double>& keyframe_stamps() const { return keyframe_stamps_; }
   // rad about the vertical: what the matcher has added to the orientation source's heading so
   // far (always 0 with icp.heading: source, the seed).
   double heading_correction() const { return heading_correction_; }

@@ -120,7 +120,6 @@ void VehicleSlam::add_to_graph(const ScanReport& report) {
   const WorldMap& map = pipeline_.map();
   const std::size_t first = pipeline_.keyframe_starts().back();
   keyframe_poses_.push_back(backend::node_of(report.pose));
-  keyframe_stamps_.push_back(report.pose.stamp);
   GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_};
   if (!map.normals().empty()) {
     keyframe.normals.assign(map.normals().begin() + static_cast<std::ptrdiff_t>(first),

@@ -101,7 +101,8 @@ class VehicleSlam {
   // With the back end: every keyframe's pose in the map's current frame (the graph's where it
   // has them); what consumers of the keyframes move their points to after a correction.
   const std::vector<backend::NodePose>& keyframe_poses() const { return keyframe_poses_; }
-  const std::vector<double>& keyframe_stamps() const { return keyframe_stamps_; }  // likewise
+  // Every keyframe's scan stamp, in keyframe order (the pipeline's).
+  const std::vector<double>& keyframe_stamps() const { return pipeline_.keyframe_stamps(); }
 
   // The back end's loop counts (none unless loop_closure.enabled).
   std::optional<backend::LoopCounts> loops() const;
@@ -138,9 +139,8 @@ class VehicleSlam {
   std::unique_ptr<GraphWorker> graph_;
   std::size_t frame_ = 0;                          // the back end's updates applied
   std::vector<backend::NodePose> keyframe_poses_;  // in the map's current frame
-  std::vector<double> keyframe_stamps_;
-  std::vector<backend::NodePose> final_poses_;  // the graph's after finish()
-  double inline_update_seconds_ = 0.0;          // rebuilding the map after an inline update
+  std::vector<backend::NodePose> final_poses_;     // the graph's after finish()
+  double inline_update_seconds_ = 0.0;             // rebuilding the map after an inline update
   std::size_t keyframes_ = 0;
   double cloud_seconds_ = 0.0;
   double occupancy_seconds_ = 0.0;
