@@ -141,6 +141,12 @@ std::optional<MapCorrection> KeyframeGraph::optimise() {
   return correction_about(nodes_.size() - 1);
 }
 
+MapCorrection KeyframeGraph::turn_headings(const std::vector<double>& turns) {
+  graph_.turn_headings(turns);
+  optimise_graph();
+  return correction_about(nodes_.size() - 1);
+}
+
 void KeyframeGraph::optimise_graph() {
   graph_.optimise();
   ++counts_.optimisations;

@@ -64,6 +64,11 @@ class KeyframeGraph {
   // Optimises the whole graph once more (the end of a run); the correction as add()'s.
   std::optional<MapCorrection> optimise();
 
+  // The front end's keyframes were made with headings off by -turns[k] (the drift of its
+  // heading source, learnt after they were made; PoseGraph::turn_headings): the steps between
+  // them turned, the graph optimised with its loops, and the correction as add()'s, always.
+  MapCorrection turn_headings(const std::vector<double>& turns);
+
   std::size_t size() const { return nodes_.size(); }
   const NodePose& pose(std::size_t keyframe) const { return graph_.node(keyframe); }
   // A keyframe's points and normals where its pose now puts them.

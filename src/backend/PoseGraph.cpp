@@ -1,5 +1,6 @@
 #include "backend/PoseGraph.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -149,6 +150,22 @@ void PoseGraph::solve(const PoseGraphOptions& options, OptimisationReport& repor
   report.final_cost = summary.final_cost;
   report.iterations += static_cast<int>(summary.iterations.size());
   report.converged = summary.termination_type == ceres::CONVERGENCE;
+}
+
+void PoseGraph::turn_headings(const std::vector<double>& turns) {
+  if (turns.empty()) throw std::invalid_argument("turn_headings: no turns");
+  const auto turn = [&turns](std::size_t node) {
+    return turns[std::min(node, turns.size() - 1)] - turns.front();
+  };
+  for (Constraint& c : constraints_) {
+    if (c.kind == ConstraintKind::Sequential) c.yaw = wrap_angle(c.yaw + turn(c.to) - turn(c.from));
+  }
+  const std::vector<NodePose> before = nodes_;
+  for (std::size_t i = 1; i < nodes_.size(); ++i) {
+    nodes_[i].position = nodes_[i - 1].position +
+                         yaw_rotation(turn(i - 1)) * (before[i].position - before[i - 1].position);
+    nodes_[i].yaw = wrap_angle(before[i].yaw + turn(i));
+  }
 }
 
 OptimisationReport PoseGraph::optimise(const PoseGraphOptions& options) {

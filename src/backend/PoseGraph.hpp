@@ -82,6 +82,15 @@ class PoseGraph {
 
   OptimisationReport optimise(const PoseGraphOptions& options = {});
 
+  // The front end measured the sequential constraints with each node's heading off by -turns[i]
+  // (a drifting heading source, learnt since; the first node is the anchor, turns are taken
+  // relative to its own). Each such constraint's heading difference takes the change,
+  //   yaw_ij += turn_j - turn_i,
+  // its translation, measured in node i's frame, stays; the nodes move as the turned steps place
+  // them, p_j = p_i + R(turn_i) (p_j - p_i)_before, ready for the next optimisation. Nodes past
+  // the end of turns turn with the last. Throws std::invalid_argument for no turns.
+  void turn_headings(const std::vector<double>& turns);
+
   const NodePose& node(std::size_t i) const { return nodes_.at(i); }
   const std::vector<NodePose>& nodes() const { return nodes_; }
   const std::vector<Constraint>& constraints() const { return constraints_; }

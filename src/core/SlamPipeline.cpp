@@ -290,6 +290,15 @@ void SlamPipeline::follow_heading_drift(double stamp) {
   drift_followed_until_ = stamp;
 }
 
+std::optional<std::vector<double>> SlamPipeline::heading_turns() const {
+  if (config_.icp.heading != HeadingMode::PeriodicCheck) return std::nullopt;
+  std::vector<double> turns = heading_rate_.turns(keyframe_stamps_, keyframe_headings_);
+  for (const double turn : turns) {
+    if (std::abs(turn) > config_.icp.heading_check_tolerance) return turns;
+  }
+  return std::nullopt;
+}
+
 // A check's disagreement against the map its pairs hold, made on average at t_map with the
 // correction H(t_map) then (each keyframe weighted by its share of the heading).
 std::optional<SlamPipeline::DriftCheck> SlamPipeline::drift_check(const MatchResult& check,
@@ -381,10 +390,12 @@ void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
                   config_.map.min_point_spacing);
   std::vector<std::size_t> first_points;
   std::vector<Vec3> positions;
-  for (const MapKeyframe& keyframe : keyframes) {
+  for (std::size_t k = 0; k < keyframes.size(); ++k) {
     first_points.push_back(map_.size());
-    positions.push_back(keyframe.position);
-    map_.add_points(keyframe.points, keyframe.normals);
+    positions.push_back(keyframes[k].position);
+    map_.add_points(keyframes[k].points, keyframes[k].normals);
+    // Its heading as the correction it now has: what the drift's checks measure against.
+    keyframe_headings_[k] = std::remainder(keyframe_headings_[k] + keyframes[k].turn, 2.0 * M_PI);
   }
   map_uncertainty_.move_keyframes(first_points, positions);
   nearest_.clear();  // the warm start's indices were the old map's

@@ -69,6 +69,7 @@ struct MapKeyframe {
   Vec3 position = Vec3::Zero();  // of the body when the keyframe was taken
   Points points;
   std::vector<Vec3> normals;
+  double turn = 0.0;  // rad: how far its heading turned about the vertical
 };
 
 class SlamPipeline {
@@ -108,6 +109,10 @@ class SlamPipeline {
   const std::vector<std::size_t>& keyframe_starts() const {
     return map_uncertainty_.first_points();
   }
+  // Beyond the seed: for each keyframe, how far its heading is from where the drift learnt since
+  // puts it (extensions/HeadingRate::turns); none while the drift learnt leaves every keyframe
+  // within icp.heading_check_tolerance. Applied by whoever can move the keyframes (the back end).
+  std::optional<std::vector<double>> heading_turns() const;
   // Each keyframe's scan stamp, in keyframe order.
   const std::vector<double>& keyframe_stamps() const { return keyframe_stamps_; }
   // rad about the vertical: what the matcher has added to the orientation source's heading so

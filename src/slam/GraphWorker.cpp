@@ -61,7 +61,14 @@ void GraphWorker::process(GraphKeyframe keyframe) {
   for (Vec3& n : keyframe.normals) n = to_graph.transform.linear() * n;
   const std::optional<backend::MapCorrection> moved =
       graph_.add(to_graph(keyframe.pose), keyframe.points, keyframe.normals);
-  if (moved) publish(*moved);
+  if (!keyframe.heading_turns.empty()) {
+    // A loop's correction, if any, is folded into the turn's.
+    if (moved) corrections_.push_back(*moved);
+    ++headings_turned_;
+    publish(graph_.turn_headings(keyframe.heading_turns));
+  } else if (moved) {
+    publish(*moved);
+  }
   account(started);
 }
 
@@ -83,6 +90,7 @@ void GraphWorker::publish(const backend::MapCorrection& correction) {
   corrections_.push_back(correction);
   GraphUpdate update;
   update.frame = corrections_.size();
+  update.headings_turned = headings_turned_;
   update.keyframes.resize(graph_.size());
   for (std::size_t k = 0; k < graph_.size(); ++k) {
     update.poses.push_back(graph_.pose(k));

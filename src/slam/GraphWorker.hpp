@@ -32,6 +32,9 @@ struct GraphKeyframe {
   Points points;           // what it added to the map, likewise
   std::vector<Vec3> normals;
   std::size_t frame = 0;
+  // When not empty: once this keyframe is in, every keyframe's heading turned by these (the
+  // drift the front end learnt since they were made; KeyframeGraph::turn_headings).
+  std::vector<double> heading_turns;
 };
 
 struct GraphUpdate {
@@ -39,6 +42,7 @@ struct GraphUpdate {
   std::size_t frame = 0;                 // the graph's: the front end's once it applies this
   std::vector<MapKeyframe> keyframes;    // the first ones the front end made, in the graph's frame
   std::vector<backend::NodePose> poses;  // theirs
+  std::size_t headings_turned = 0;       // GraphKeyframe::heading_turns applied so far
 };
 
 class GraphWorker {
@@ -77,6 +81,7 @@ class GraphWorker {
   std::deque<GraphKeyframe> queue_;
   std::optional<GraphUpdate> ready_;
   std::size_t taken_frame_ = 0;  // the front end's frame
+  std::size_t headings_turned_ = 0;
   bool busy_ = false;
   bool stop_ = false;
   backend::LoopCounts counts_;

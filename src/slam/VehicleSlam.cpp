@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "core/Angles.hpp"
 #include "core/Heading.hpp"
 #include "core/ScanProjection.hpp"
 
@@ -120,10 +121,18 @@ void VehicleSlam::add_to_graph(const ScanReport& report) {
   const WorldMap& map = pipeline_.map();
   const std::size_t first = pipeline_.keyframe_starts().back();
   keyframe_poses_.push_back(backend::node_of(report.pose));
-  GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_};
+  GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_, {}};
   if (!map.normals().empty()) {
     keyframe.normals.assign(map.normals().begin() + static_cast<std::ptrdiff_t>(first),
                             map.normals().end());
+  }
+  // The drift the heading checks learnt, applied to the keyframes made before (one turn at a
+  // time: the next is worked out on the headings the last one left).
+  if (headings_turned_ == headings_turned_applied_) {
+    if (std::optional<std::vector<double>> turns = pipeline_.heading_turns()) {
+      keyframe.heading_turns = std::move(*turns);
+      ++headings_turned_;
+    }
   }
   graph_->add(std::move(keyframe));
 }
@@ -142,6 +151,7 @@ bool VehicleSlam::apply_graph_update() {
     const std::size_t end = k + 1 < starts.size() ? starts[k + 1] : map.size();
     MapKeyframe moved;
     moved.position = correction.transform * keyframe_poses_[k].position;
+    moved.turn = correction.yaw;
     for (std::size_t i = starts[k]; i < end; ++i) {
       moved.points.push_back(correction.transform * map.point(i));
       if (!map.normals().empty()) {
@@ -150,6 +160,9 @@ bool VehicleSlam::apply_graph_update() {
     }
     keyframes.push_back(std::move(moved));
   }
+  for (std::size_t k = 0; k < update->poses.size() && k < keyframe_poses_.size(); ++k) {
+    keyframes[k].turn = wrap_angle(update->poses[k].yaw - keyframe_poses_[k].yaw);
+  }
   pipeline_.replace_map(keyframes, correction.transform, correction.yaw);
   if (inertial_) inertial_->reanchor(correction.transform);
   for (std::size_t k = 0; k < keyframe_poses_.size(); ++k) {
@@ -157,6 +170,7 @@ bool VehicleSlam::apply_graph_update() {
         k < update->poses.size() ? update->poses[k] : correction(keyframe_poses_[k]);
   }
   frame_ = update->frame;
+  headings_turned_applied_ = update->headings_turned;
   return true;
 }
 

@@ -10,7 +10,8 @@
 //   - the tracking state: tracking, degraded or lost, and why (TrackingMonitor);
 //   - the pose-graph back end (loop_closure.enabled, backend/KeyframeGraph): every keyframe into
 //     the graph; when a loop moves the keyframes, the pipeline's map is rebuilt on them and the
-//     motion prior moves with it.
+//     motion prior moves with it; so too when the heading drift the pipeline learnt turns the
+//     keyframes made before it (SlamPipeline::heading_turns).
 #pragma once
 
 #include <cstddef>
@@ -138,6 +139,8 @@ class VehicleSlam {
   std::unique_ptr<OccupancyOctree> occupancy_;
   std::unique_ptr<GraphWorker> graph_;
   std::size_t frame_ = 0;                          // the back end's updates applied
+  std::size_t headings_turned_ = 0;                // heading turns handed to the back end, and
+  std::size_t headings_turned_applied_ = 0;        // those its updates applied
   std::vector<backend::NodePose> keyframe_poses_;  // in the map's current frame
   std::vector<backend::NodePose> final_poses_;     // the graph's after finish()
   double inline_update_seconds_ = 0.0;             // rebuilding the map after an inline update

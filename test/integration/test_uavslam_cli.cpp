@@ -244,8 +244,10 @@ TEST_F(UavslamCli, TheHeadingChecksLearnTheImusDriftAndFollowIt) {
 
 // The same drifting IMU with the back end on: the flight comes back through the rooms it mapped,
 // the loops found there are optimised into the keyframe graph, and the map and the pose move with
-// it. Both what the vehicle flew on and the final graph's poses beat the front end alone (the
-// graph's by 13 %: 0.108 against 0.124 m; 22 % before the front end followed the drift itself).
+// it; once the heading checks have learnt the drift, the keyframes made before it turn by it too.
+// What the vehicle flew on beats the front end alone by a third (horizontal 0.063 against
+// 0.097 m; before the keyframes were turned, 0.095 against 0.097 m), the final
+// graph's poses by half (0.062 against 0.124 m).
 TEST_F(UavslamCli, TheBackEndClosesTheLoopsOfAFlightWhoseImuDrifts) {
   const nlohmann::json alone =
       simulate(dir / "alone", "yaw_drift", "config/slam.yaml", "--set loop_closure.enabled=false");
@@ -254,13 +256,14 @@ TEST_F(UavslamCli, TheBackEndClosesTheLoopsOfAFlightWhoseImuDrifts) {
   EXPECT_EQ(closed.at("loops").at("rejected_by_graph").get<int>(), 0);
   EXPECT_FALSE(alone.contains("loops"));
   const double after = closed.at("trajectory_errors_after_loops").at("ate_rmse_m").get<double>();
-  EXPECT_LT(ate_horizontal(closed), ate_horizontal(alone));
-  EXPECT_LT(after, 0.92 * alone.at("trajectory_errors").at("ate_rmse_m").get<double>());
+  EXPECT_LT(ate_horizontal(closed), 0.8 * ate_horizontal(alone));
+  EXPECT_LT(after, 0.7 * alone.at("trajectory_errors").at("ate_rmse_m").get<double>());
 }
 
 // Out through a door, around another room and back (two_rooms.yaml, the IMU's heading
-// drifting): coming back, the first room's map is where the drift left it. The back end finds
-// the loop there and the final graph puts the flight back where it was (0.145 -> 0.120 m).
+// drifting): coming back, the first room's map is where the drift left it. The back end turns
+// the keyframes made before the drift was learnt and finds the loop there; the final graph puts
+// the flight back where it was (0.145 -> 0.060 m; 0.120 m by the loop alone).
 TEST_F(UavslamCli, TheBackEndClosesTheLoopThroughTheOtherRoom) {
   const nlohmann::json alone =
       simulate(dir / "alone", "two_rooms", "config/slam.yaml", "--set loop_closure.enabled=false");
@@ -268,7 +271,7 @@ TEST_F(UavslamCli, TheBackEndClosesTheLoopThroughTheOtherRoom) {
   EXPECT_GT(closed.at("loops").at("accepted").get<int>(), 0);
   const double before = alone.at("trajectory_errors").at("ate_rmse_m").get<double>();
   const double after = closed.at("trajectory_errors_after_loops").at("ate_rmse_m").get<double>();
-  EXPECT_LT(after, 0.9 * before) << "before " << before << " m";
+  EXPECT_LT(after, 0.6 * before) << "before " << before << " m";
 }
 
 // --seed: the same flight with other sensor noise (Monte Carlo runs); the same seed, the same run.

@@ -27,6 +27,8 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
+#include <vector>
 
 namespace uavslam {
 
@@ -43,7 +45,23 @@ class HeadingRate {
   // errors.
   double rate() const;
 
+  // The keyframes made before the rate was learnt, or while a smaller one was followed, joined
+  // the map turned by the drift not followed then. Keyframe k, made at t_k with the correction
+  // H_k, should have had H_0 + r (t_k - t_0) (the first keyframe anchors the map's heading):
+  //   turn_k = r (t_k - t_0) - (H_k - H_0)
+  // (rad, one per keyframe; all 0 until the rate is beyond five standard errors, a stricter test
+  // than following it: the map is not turned on noise).
+  std::vector<double> turns(const std::vector<double>& stamps,
+                            const std::vector<double>& corrections) const;
+
  private:
+  struct Fit {
+    double rate = 0.0;   // r above
+    double sigma = 0.0;  // its standard error
+  };
+  // The line through the checks; none before 30 checks, without a prior, or without a span.
+  std::optional<Fit> fit() const;
+
   double prior_sigma_;
   // Over the checks: their count and the sums of dt, m, dt^2, dt m and m^2.
   std::size_t n_ = 0;

@@ -179,6 +179,31 @@ TEST(PoseGraphTest, RefusesConstraintsItCannotHold) {
   EXPECT_TRUE(graph.constraints().empty());
 }
 
+// The chain's drift learnt afterwards (a gyro bias the heading checks found): the nodes' headings
+// turned back by it, each step keeps what it measured in its own node's frame, and the chain is
+// straight again without a loop; the anchor stays and the optimisation has nothing left to do.
+TEST(PoseGraphTest, ADriftLearntAfterwardsStraightensTheChain) {
+  const std::vector<NodePose> truth = square_flight();
+  const double bias = 0.004;  // rad per step
+  PoseGraph graph = drifted_chain(truth, bias);
+  const double drifted = position_error(graph, truth);
+  ASSERT_GT(drifted, 1.0) << "the chain must have drifted for the test to mean anything";
+  std::vector<double> turns;
+  for (std::size_t i = 0; i < truth.size(); ++i) turns.push_back(-bias * double(i));
+
+  graph.turn_headings(turns);
+
+  EXPECT_LT(position_error(graph, truth), 0.1 * drifted);
+  EXPECT_NEAR(graph.node(truth.size() - 1).yaw, truth.back().yaw, 0.01);
+  EXPECT_EQ(graph.node(0).position, truth[0].position);
+  const std::vector<NodePose> turned = graph.nodes();
+  EXPECT_TRUE(graph.optimise().converged);
+  for (std::size_t i = 0; i < turned.size(); ++i) {
+    EXPECT_NEAR((graph.node(i).position - turned[i].position).norm(), 0.0, 1e-6) << i;
+  }
+  EXPECT_THROW(graph.turn_headings({}), std::invalid_argument);
+}
+
 TEST(PoseGraphTest, HeadingsComeBackWrapped) {
   PoseGraph graph;
   graph.add_node({Vec3::Zero(), 3.0});

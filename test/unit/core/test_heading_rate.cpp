@@ -77,6 +77,42 @@ TEST(HeadingRate, AnOffsetThatDoesNotGrowWithTheSpanIsNoDrift) {
   EXPECT_NEAR(drifting.rate(), drift, 0.25 * drift);
 }
 
+// The keyframes made before the drift was learnt: each is turned by the drift since the first
+// keyframe less what the correction had already taken of it when it was made.
+TEST(HeadingRate, TheKeyframesTurnByTheDriftTheyWereNotCorrectedFor) {
+  const double drift = 2.0 * kDegree * kPerMinute;
+  HeadingRate rate(5.0 * kDegree * kPerMinute);
+  const std::vector<double> stamps{5.0, 15.0, 35.0};
+  const std::vector<double> corrections{0.01, 0.01, 0.01 + 10.0 * drift};
+  for (double turn : rate.turns(stamps, corrections)) EXPECT_EQ(turn, 0.0);  // nothing learnt
+  for (int k = 1; k <= 100; ++k) rate.add_check(drift * k, double(k), 0.0);
+  ASSERT_NEAR(rate.rate(), drift, 1e-3 * drift);
+  const std::vector<double> turns = rate.turns(stamps, corrections);
+  ASSERT_EQ(turns.size(), 3u);
+  EXPECT_NEAR(turns[0], 0.0, 1e-12);
+  EXPECT_NEAR(turns[1], 10.0 * drift, 1e-3 * drift);
+  EXPECT_NEAR(turns[2], 20.0 * drift, 1e-2 * drift);
+}
+
+// A rate the checks show at four standard errors is followed, but the map is not turned on it
+// (five): noise at the right moment passes three now and then. Spans of 1..40 s, the checks
+// alternating +-a about the drift's line: the standard error is about a / 73.
+TEST(HeadingRate, TheMapIsTurnedOnlyOnAClearRate) {
+  const double drift = 1e-4;  // rad/s
+  const auto learnt = [drift](double a) {
+    HeadingRate rate(5.0 * kDegree * kPerMinute);
+    for (int k = 1; k <= 40; ++k) rate.add_check(drift * k + (k % 2 == 0 ? a : -a), k, 0.0);
+    return rate;
+  };
+  const std::vector<double> stamps{0.0, 60.0};
+  const std::vector<double> corrections{0.0, 0.0};
+  const HeadingRate four = learnt(18.0 * drift);
+  EXPECT_NE(four.rate(), 0.0);
+  EXPECT_EQ(four.turns(stamps, corrections)[1], 0.0);
+  const HeadingRate seven = learnt(10.0 * drift);
+  EXPECT_NEAR(seven.turns(stamps, corrections)[1], 60.0 * seven.rate(), 1e-12);
+}
+
 TEST(HeadingRate, NothingIsLearntWithoutAPriorOrASpan) {
   HeadingRate off(0.0);
   HeadingRate on(5.0 * kDegree * kPerMinute);

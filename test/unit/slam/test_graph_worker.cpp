@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "unit/backend/HallFlight.hpp"
 
 namespace uavslam {
@@ -31,7 +33,7 @@ std::vector<backend::NodePose> inline_run(const std::vector<Flown>& flown) {
   for (const Flown& f : flown) {
     Points points;
     for (const Vec3& p : f.points) points.push_back(frame.transform * p);
-    worker.add({frame(f.pose), points, {}, taken});
+    worker.add({frame(f.pose), points, {}, taken, {}});
     if (std::optional<GraphUpdate> u = worker.take()) {
       frame = frame.then(u->correction);
       taken = u->frame;
@@ -48,7 +50,7 @@ TEST(GraphWorkerTest, AThreadThatIsNeverAskedGivesTheSameGraphAsInline) {
   const std::vector<Flown> flown = hall_flight();
   const std::vector<backend::NodePose> expected = inline_run(flown);
   GraphWorker worker(hall_config(), GraphWorker::Threading::Thread);
-  for (const Flown& f : flown) worker.add({f.pose, f.points, {}, 0});
+  for (const Flown& f : flown) worker.add({f.pose, f.points, {}, 0, {}});
   worker.finish();
   EXPECT_GT(worker.counts().accepted, 0u);
   const std::vector<backend::NodePose> poses = worker.poses();
@@ -63,6 +65,28 @@ TEST(GraphWorkerTest, AThreadThatIsNeverAskedGivesTheSameGraphAsInline) {
   const backend::NodePose moved = last->correction(flown.back().pose);
   EXPECT_NEAR((moved.position - poses.back().position).norm(), 0.0, 1e-6);
   EXPECT_FALSE(worker.take().has_value()) << "an update is taken once";
+}
+
+// A keyframe that comes with heading turns (the front end learnt its source's drift): once it is
+// in, every keyframe's heading turns by them, the steps with them, and the update says so.
+TEST(GraphWorkerTest, HeadingTurnsMoveTheKeyframesAndTheUpdateSaysSo) {
+  GraphWorker worker(hall_config(), GraphWorker::Threading::Inline);
+  const std::vector<backend::NodePose> made{
+      {Vec3(0.0, 0.0, 1.0), 0.0}, {Vec3(1.0, 0.0, 1.0), 0.0}, {Vec3(2.0, 0.0, 1.0), 0.0}};
+  worker.add({made[0], {}, {}, 0, {}});
+  worker.add({made[1], {}, {}, 0, {}});
+  EXPECT_FALSE(worker.take().has_value());
+  worker.add({made[2], {}, {}, 0, {0.0, 0.1, 0.2}});
+  const std::optional<GraphUpdate> update = worker.take();
+  ASSERT_TRUE(update.has_value());
+  EXPECT_EQ(update->headings_turned, 1u);
+  ASSERT_EQ(update->poses.size(), 3u);
+  EXPECT_NEAR(update->poses[1].yaw, 0.1, 1e-6);
+  EXPECT_NEAR(update->poses[2].yaw, 0.2, 1e-6);
+  // The second step, measured along x in the first keyframe's frame, turned with it.
+  EXPECT_NEAR((update->poses[2].position - Vec3(1.0 + std::cos(0.1), std::sin(0.1), 1.0)).norm(),
+              0.0, 1e-6);
+  EXPECT_NEAR((update->correction(made[2]).position - update->poses[2].position).norm(), 0.0, 1e-6);
 }
 
 TEST(GraphWorkerTest, FinishingWithoutKeyframesIsHarmless) {
