@@ -167,7 +167,8 @@ nlohmann::json FlightRecord::summary() const {
                             {"last_tracking_reason", counters_.tracking_reason},
                             {"loops_searched", counters_.loops_searched},
                             {"loops_accepted", counters_.loops_accepted},
-                            {"corrections", counters_.corrections}};
+                            {"corrections", counters_.corrections},
+                            {"heading_drift_deg_per_min", counters_.heading_drift_deg_per_min}};
   json["map"] = {{"snapshots_received", maps_},
                  {"malformed", malformed_maps_},
                  {"last_map_seq", maps_ > 0 ? nlohmann::json(map_info_.map_seq) : nlohmann::json()},

@@ -32,6 +32,7 @@ struct MatcherCounters {
   std::uint64_t loops_searched = 0;  // the matcher's back end (0 without one)
   std::uint64_t loops_accepted = 0;
   std::uint64_t corrections = 0;
+  double heading_drift_deg_per_min = 0.0;  // the IMU's, as the matcher learnt it (0: none)
 };
 
 // What a map snapshot says about itself.

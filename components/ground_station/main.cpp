@@ -74,6 +74,7 @@ ground_station::MatcherCounters counters_of(const msg::MatcherStatus& m) {
   c.loops_searched = m.loops_searched();
   c.loops_accepted = m.loops_accepted();
   c.corrections = m.corrections();
+  c.heading_drift_deg_per_min = m.heading_drift_deg_per_min();
   return c;
 }
 

@@ -4,12 +4,9 @@
 #include <iomanip>
 #include <ostream>
 
+#include "core/Angles.hpp"
+
 namespace uavslam::cli {
-namespace {
-
-constexpr double kDegreesPerMinute = 60.0 * 180.0 / M_PI;  // per rad/s
-
-}  // namespace
 
 double RunSummary::real_time_factor() const {
   return run->wall_seconds > 0.0 ? flight_seconds / run->wall_seconds : 0.0;
@@ -150,7 +147,7 @@ void print_summary(std::ostream& out, const RunSummary& s) {
         << nees.count << " poses (a consistent covariance gives " << nees.mean_dimension << ")\n";
   }
   if (run.heading_drift != 0.0) {
-    out << std::setprecision(2) << "  heading drift     " << run.heading_drift * kDegreesPerMinute
+    out << std::setprecision(2) << "  heading drift     " << degrees_per_minute(run.heading_drift)
         << " deg/min: the IMU's, learnt from the heading checks and followed\n";
   }
   if (!run.prior_distances.empty()) {
@@ -201,7 +198,7 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
     j["consistency"] = {
         {"nees_mean", nees.mean}, {"poses", nees.count}, {"state_dimension", nees.mean_dimension}};
   }
-  j["heading_drift_deg_per_min"] = run.heading_drift * kDegreesPerMinute;
+  j["heading_drift_deg_per_min"] = degrees_per_minute(run.heading_drift);
   if (!run.prior_distances.empty()) {
     const eval::SampleStats d = eval::summarize(run.prior_distances);
     j["match_vs_prior_sigmas"] = {{"p50", d.p50}, {"p99", d.p99}, {"max", d.max}};

@@ -16,6 +16,10 @@ constexpr double deg_to_rad(double degrees) {
 constexpr double rad_to_deg(double radians) {
   return radians * 180.0 / kPi;
 }
+// A turn rate in rad/s as degrees a minute (how a heading drift is stated).
+constexpr double degrees_per_minute(double radians_per_second) {
+  return rad_to_deg(radians_per_second) * 60.0;
+}
 
 // The angle in (-pi, pi] equivalent to `radians`.
 inline double wrap_angle(double radians) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/Angles.hpp"
+
 namespace uavslam::dds {
 
 float pose_quality(const ScanReport& report, const SlamConfig& config) {
@@ -88,6 +90,7 @@ msg::MatcherStatus status_message(const VehicleScan& result, const Scan& scan, d
   s.tracking(to_string(result.tracking.state));
   s.tracking_reason(to_string(result.tracking.reason));
   s.degenerate_directions(static_cast<std::uint32_t>(report.seen.degenerate));
+  s.heading_drift_deg_per_min(degrees_per_minute(result.heading_drift));
   return s;
 }
 

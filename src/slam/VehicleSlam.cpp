@@ -86,6 +86,7 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
   }
   if (result.report.map_updated) result.keyframe = keyframe_of(scan, result.report);
   if (result.posed()) add_dense(scan, result.report, result.keyframe ? &*result.keyframe : nullptr);
+  result.heading_drift = pipeline_.heading_drift();
   return result;
 }
 

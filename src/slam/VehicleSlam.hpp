@@ -64,6 +64,7 @@ struct VehicleScan {
   TrackingStatus tracking;           // tracking, degraded or lost, and why
   std::optional<ScanAnchor> anchor;  // with the back end, for a posed scan
   bool map_corrected = false;        // the back end moved the keyframes and rebuilt the map
+  double heading_drift = 0.0;        // rad/s: the source's, as learnt (SlamPipeline::heading_drift)
 
   // The scan got a pose: matched, or (rejected with a motion prior) dead-reckoned.
   bool posed() const { return report.accepted() || report.dead_reckoned; }

@@ -80,6 +80,12 @@ TEST(MatcherMessages, TheKeyframeAndTheStatusCarryWhatTheScanGave) {
   EXPECT_EQ(status.loops_searched(), 40u);
   EXPECT_EQ(status.loops_accepted(), 9u);
   EXPECT_EQ(status.corrections(), 2u);
+  EXPECT_EQ(status.heading_drift_deg_per_min(), 0.0);  // none learnt
+  VehicleScan drifting = result;
+  drifting.heading_drift = 2.0 * M_PI / 180.0 / 60.0;  // rad/s
+  EXPECT_NEAR(
+      status_message(drifting, scan, 1.5, counts, 8, {"map", "uav1"}).heading_drift_deg_per_min(),
+      2.0, 1e-12);
 }
 
 // The position's covariance as the pipeline reported it, the attitude's as the source states it;

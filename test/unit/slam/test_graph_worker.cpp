@@ -87,6 +87,21 @@ TEST(GraphWorkerTest, HeadingTurnsMoveTheKeyframesAndTheUpdateSaysSo) {
   EXPECT_NEAR((update->poses[2].position - Vec3(1.0 + std::cos(0.1), std::sin(0.1), 1.0)).norm(),
               0.0, 1e-6);
   EXPECT_NEAR((update->correction(made[2]).position - update->poses[2].position).norm(), 0.0, 1e-6);
+
+  // On the worker's own thread (slam_matcher) the same, once the worker has caught up.
+  GraphWorker threaded(hall_config(), GraphWorker::Threading::Thread);
+  threaded.add({made[0], {}, {}, 0, {}});
+  threaded.add({made[1], {}, {}, 0, {}});
+  threaded.add({made[2], {}, {}, 0, {0.0, 0.1, 0.2}});
+  threaded.finish();
+  const std::optional<GraphUpdate> last = threaded.take();
+  ASSERT_TRUE(last.has_value());
+  EXPECT_EQ(last->headings_turned, 1u);
+  ASSERT_EQ(last->poses.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_NEAR((last->poses[k].position - update->poses[k].position).norm(), 0.0, 1e-6) << k;
+    EXPECT_NEAR(last->poses[k].yaw, update->poses[k].yaw, 1e-9) << k;
+  }
 }
 
 TEST(GraphWorkerTest, FinishingWithoutKeyframesIsHarmless) {
