@@ -127,13 +127,21 @@ LidarSpec read_lidar(const YamlReader& reader) {
 
 sim::ImuSpec read_imu(const YamlReader& reader) {
   reader.expect_keys_only({"rate_hz", "orientation_noise_std_deg", "yaw_drift_deg_per_min",
-                           "gyro_noise_std", "accel_noise_std", "accel_bias"});
+                           "yaw_drift_changes", "gyro_noise_std", "accel_noise_std", "accel_bias"});
   sim::ImuSpec imu;
   imu.rate_hz = reader.get_double_or("rate_hz", imu.rate_hz, NumberRange::positive());
   imu.orientation_noise_std_deg = reader.get_double_or(
       "orientation_noise_std_deg", imu.orientation_noise_std_deg, NumberRange::non_negative());
   imu.yaw_drift_deg_per_min =
       reader.get_double_or("yaw_drift_deg_per_min", imu.yaw_drift_deg_per_min);
+  if (const auto changes = reader.find("yaw_drift_changes")) {
+    for (const YamlReader& item : changes->elements()) {
+      item.expect_keys_only({"t", "deg_per_min"});
+      const double after = imu.yaw_drift_changes.empty() ? 0.0 : imu.yaw_drift_changes.back().t;
+      imu.yaw_drift_changes.push_back(
+          {item.get_double("t", NumberRange::greater_than(after)), item.get_double("deg_per_min")});
+    }
+  }
   imu.gyro_noise_std =
       reader.get_double_or("gyro_noise_std", imu.gyro_noise_std, NumberRange::non_negative());
   imu.accel_noise_std =

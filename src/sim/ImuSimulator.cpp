@@ -1,5 +1,7 @@
 #include "sim/ImuSimulator.hpp"
 
+#include <algorithm>
+
 #include "core/Angles.hpp"
 #include "sim/SeedMixing.hpp"
 
@@ -17,9 +19,18 @@ Eigen::Quaterniond rotation_from_vector(const Vec3& v) {
 }  // namespace
 
 Eigen::Quaterniond heading_drift_at(const ImuSpec& spec, const Trajectory& trajectory, double t) {
-  const double minutes = (t - trajectory.start_time()) / 60.0;
-  return Eigen::Quaterniond(
-      Eigen::AngleAxisd(deg_to_rad(spec.yaw_drift_deg_per_min * minutes), Vec3::UnitZ()));
+  // The rate in force over each stretch, integrated up to t.
+  double degrees = 0.0;
+  double from = trajectory.start_time();
+  double rate = spec.yaw_drift_deg_per_min;
+  for (const DriftChange& change : spec.yaw_drift_changes) {
+    const double until = std::min(t, trajectory.start_time() + change.t);
+    if (until > from) degrees += rate * (until - from) / 60.0;
+    from = std::max(from, until);
+    rate = change.deg_per_min;
+  }
+  if (t > from) degrees += rate * (t - from) / 60.0;
+  return Eigen::Quaterniond(Eigen::AngleAxisd(deg_to_rad(degrees), Vec3::UnitZ()));
 }
 
 ImuSimulator::ImuSimulator(const ImuSpec& spec, std::uint64_t seed)

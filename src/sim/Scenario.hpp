@@ -35,12 +35,20 @@ struct Waypoint {
   double yaw_deg = 0.0;
 };
 
+// From `t` s into the flight on, the heading drifts at this rate instead (a gyro's bias moves
+// with its temperature).
+struct DriftChange {
+  double t = 0.0;
+  double deg_per_min = 0.0;
+};
+
 struct ImuSpec {
   double rate_hz = 200.0;
   double orientation_noise_std_deg = 0.1;
   double yaw_drift_deg_per_min = 0.0;
-  double gyro_noise_std = 0.001;  // rad/s
-  double accel_noise_std = 0.02;  // m/s^2
+  std::vector<DriftChange> yaw_drift_changes;  // in time order
+  double gyro_noise_std = 0.001;               // rad/s
+  double accel_noise_std = 0.02;               // m/s^2
   // m/s^2 per body axis, constant: what the accelerometer adds to the specific force (a real
   // one's calibration leaves a few hundredths; zero, the ideal sensor, unless a scenario says).
   Vec3 accel_bias = Vec3::Zero();

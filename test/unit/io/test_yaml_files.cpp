@@ -227,6 +227,24 @@ TEST_F(YamlFileTest, OutOfRangeValueIsRejected) {
               HasSubstr("key 'imu.rate_hz': expected a number > 0, got '-5'"));
 }
 
+// The heading drift's changes: read in time order, one out of order named with its index.
+TEST_F(YamlFileTest, DriftChangesComeInTimeOrder) {
+  const std::string good =
+      write("changes.yaml", std::string(kMinimalScenario) +
+                                "imu:\n  yaw_drift_changes:\n    - {t: 10, deg_per_min: 1}\n"
+                                "    - {t: 20, deg_per_min: -0.5}\n");
+  const sim::Scenario s = load_scenario(good);
+  ASSERT_EQ(s.imu.yaw_drift_changes.size(), 2u);
+  EXPECT_EQ(s.imu.yaw_drift_changes[1].t, 20.0);
+  EXPECT_EQ(s.imu.yaw_drift_changes[1].deg_per_min, -0.5);
+  const std::string bad =
+      write("order.yaml", std::string(kMinimalScenario) +
+                              "imu:\n  yaw_drift_changes:\n    - {t: 20, deg_per_min: 1}\n"
+                              "    - {t: 10, deg_per_min: -0.5}\n");
+  EXPECT_THAT(config_error_of([&] { load_scenario(bad); }),
+              HasSubstr("key 'imu.yaw_drift_changes[1].t': expected a number > 20, got '10'"));
+}
+
 TEST_F(YamlFileTest, MirrorCannotTakeMoreBeamsThanTheScanner) {
   const std::string path = write("mirror.yaml", std::string(kMinimalScenario) +
                                                     "lidar:\n  beams: 10\n  floor_mirror: "

@@ -77,6 +77,22 @@ TEST(ImuSimulator, YawDriftOfTwoDegreesPerMinuteGivesTwoDegreesAfterAMinute) {
   }
 }
 
+// A drift that changes (a gyro warming up): 2 degrees a minute for the first minute, then -1.
+TEST(ImuSimulator, ADriftThatChangesIsIntegratedStretchByStretch) {
+  const Trajectory hover(testing::hover(Vec3(1.0, 2.0, 1.5), 0.0, 180.0));
+  ImuSpec spec = noiseless_imu();
+  spec.yaw_drift_deg_per_min = 2.0;
+  spec.yaw_drift_changes = {{60.0, -1.0}};
+  ImuSimulator imu(spec, 1);
+  for (const auto& [t, expected_deg] :
+       {std::pair{30.0, 1.0}, {60.0, 2.0}, {120.0, 1.0}, {180.0, 0.0}}) {
+    const Eigen::Quaterniond error =
+        imu.sample_at(hover, t).orientation * hover.pose_at(t).orientation.conjugate();
+    EXPECT_NEAR(rad_to_deg(2.0 * std::atan2(error.z(), error.w())), expected_deg, 1e-9)
+        << "t = " << t;
+  }
+}
+
 TEST(ImuSimulator, DriftIsAppliedOnTheWorldSideOfATiltedAttitude) {
   const Trajectory dash({{0.0, Vec3(0.0, 0.0, 1.0), 0.0}, {60.0, Vec3(30.0, 0.0, 1.0), 0.0}});
   ImuSpec spec = noiseless_imu();

@@ -86,11 +86,16 @@ TEST(DemoScenario, IsAThreeMinuteFlightAtWalkingPace) {
   EXPECT_EQ(demo.seed, 1u);
 }
 
-TEST(YawDriftScenario, IsTheDemoWithADriftingImu) {
+class DriftingDemo : public ::testing::TestWithParam<std::string> {};
+
+// yaw_drift.yaml and drift_change.yaml: the demo's room and flight, the IMU's heading drifting
+// 2 degrees a minute (drift_change: until 90 s, 0.5 after).
+TEST_P(DriftingDemo, IsTheDemoWithADriftingImu) {
   const Scenario demo = testing::shipped_scenario("demo");
-  const Scenario drift = testing::shipped_scenario("yaw_drift");
+  const Scenario drift = testing::shipped_scenario(GetParam());
   EXPECT_DOUBLE_EQ(drift.imu.yaw_drift_deg_per_min, 2.0);
   EXPECT_DOUBLE_EQ(demo.imu.yaw_drift_deg_per_min, 0.0);
+  EXPECT_TRUE(demo.imu.yaw_drift_changes.empty());
   ASSERT_EQ(drift.waypoints.size(), demo.waypoints.size());
   for (std::size_t i = 0; i < demo.waypoints.size(); ++i) {
     EXPECT_EQ(drift.waypoints[i].t, demo.waypoints[i].t);
@@ -103,6 +108,16 @@ TEST(YawDriftScenario, IsTheDemoWithADriftingImu) {
     EXPECT_EQ(drift.world.boxes[i].max, demo.world.boxes[i].max);
   }
   EXPECT_EQ(drift.world.cylinders.size(), demo.world.cylinders.size());
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, DriftingDemo, ::testing::Values("yaw_drift", "drift_change"),
+                         [](const auto& info) { return info.param; });
+
+TEST(DriftChangeScenario, TheDriftSettlesAfterNinetySeconds) {
+  const Scenario drift = testing::shipped_scenario("drift_change");
+  ASSERT_EQ(drift.imu.yaw_drift_changes.size(), 1u);
+  EXPECT_DOUBLE_EQ(drift.imu.yaw_drift_changes[0].t, 90.0);
+  EXPECT_DOUBLE_EQ(drift.imu.yaw_drift_changes[0].deg_per_min, 0.5);
 }
 
 }  // namespace
