@@ -1,5 +1,6 @@
 #include "backend/KeyframeGraph.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -54,6 +55,14 @@ std::vector<Eigen::Vector2d> thinned(const std::vector<Eigen::Vector2d>& points,
   return kept;
 }
 
+// How much a blind direction's covariance grew from one keyframe to the next (its positive part:
+// a fix in between leaves none).
+Eigen::Matrix2d growth(const Eigen::Matrix2d& before, const Eigen::Matrix2d& after) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(after - before);
+  return solver.eigenvectors() * solver.eigenvalues().cwiseMax(0.0).asDiagonal() *
+         solver.eigenvectors().transpose();
+}
+
 }  // namespace
 
 std::string describe(const LoopCounts& loops) {
@@ -83,30 +92,43 @@ MapCorrection MapCorrection::then(const MapCorrection& next) const {
 KeyframeGraph::KeyframeGraph(const SlamConfig::LoopClosure& config) : config_(config) {}
 
 // The chain's noise between two successive keyframes (loop_closure.step_*): grows with the
-// distance and the turn between them.
-Constraint KeyframeGraph::step_constraint(const NodePose& from, const NodePose& to) const {
+// distance and the turn between them. Where the front end's scans were blind (a corridor's
+// axis), the step is what its motion prior carried, and as uncertain as that grew between them
+// (unseen_growth, world x-y, turned into `from`'s frame): a loop at the end of a blind stretch
+// is searched as wide as the stretch allows, and the optimisation bends the stretch, not the
+// steps the scans held.
+Constraint KeyframeGraph::step_constraint(const NodePose& from, const NodePose& to,
+                                          const Eigen::Matrix2d& unseen_growth) const {
   Constraint c = relative(from, to);
   const double sigma = config_.step_sigma + config_.step_sigma_per_metre * c.translation.norm();
   const double yaw_sigma =
       config_.step_yaw_sigma + config_.step_yaw_sigma_per_radian * std::abs(c.yaw);
   c.information = diagonal_information(sigma, sigma, yaw_sigma);
+  if (unseen_growth.trace() > 0.0) {
+    const Eigen::Matrix2d turn = heading(from.yaw).topLeftCorner<2, 2>();
+    const Eigen::Matrix2d covariance =
+        sigma * sigma * Eigen::Matrix2d::Identity() + turn.transpose() * unseen_growth * turn;
+    c.information.topLeftCorner<2, 2>() = covariance.inverse();
+  }
   return c;
 }
 
 std::optional<MapCorrection> KeyframeGraph::add(const NodePose& pose, const Points& points,
-                                                const std::vector<Vec3>& normals) {
+                                                const std::vector<Vec3>& normals,
+                                                const Eigen::Matrix2d& unseen) {
   Node node;
   if (nodes_.empty()) {
     graph_.add_node(pose);
   } else {
     // The front end's motion since its last keyframe, from where the graph now has that one.
-    Constraint step = step_constraint(in_front_end_.back(), pose);
+    Constraint step = step_constraint(in_front_end_.back(), pose, growth(unseen_.back(), unseen));
     step.from = nodes_.size() - 1;
     step.to = graph_.add_node(compose(graph_.node(step.from), step));
     graph_.add_constraint(step);
     node.travelled = nodes_.back().travelled + step.translation.norm();
   }
   in_front_end_.push_back(pose);
+  unseen_.push_back(unseen);
   for (const Vec3& p : points) {
     node.points.push_back(to_node_frame(pose, p));
     node.reach = std::max(node.reach, node.points.back().head<2>().norm());
@@ -216,7 +238,14 @@ std::vector<KeyframeGraph::PathUncertainty> KeyframeGraph::uncertainty_from(
       const Constraint& c = constraints[e];
       const std::size_t v = c.from == u ? c.to : c.from;
       const double yaw_variance = 1.0 / c.information(3, 3);
-      const double position = best[u].position + 1.0 / c.information(0, 0) + lever * yaw_variance;
+      // Its largest horizontal variance, 1 / the smallest eigenvalue of its x-y information: the
+      // scalar stands for both axes.
+      const double p = c.information(0, 0);
+      const double r = c.information(1, 1);
+      const double q = c.information(0, 1);
+      const double step_variance =
+          1.0 / ((p + r) / 2.0 - std::sqrt((p - r) * (p - r) / 4.0 + q * q));
+      const double position = best[u].position + step_variance + lever * yaw_variance;
       if (settled[v] || position >= best[v].position) continue;
       best[v] = {position, best[u].yaw + yaw_variance};
       queue.push({position, v});

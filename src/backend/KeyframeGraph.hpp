@@ -57,9 +57,12 @@ class KeyframeGraph {
 
   // A front-end keyframe: its pose (position and heading in the front end's current world frame)
   // and the points it added to the map with their normals (empty or one per point), world frame.
-  // Searches it for loops; a correction when an accepted loop moved the newest keyframe.
+  // `unseen`: its position's covariance in x-y (m^2, world frame) along what its scan left blind,
+  // the motion prior's since its last fix there (zero where the scan saw everything). Searches
+  // it for loops; a correction when an accepted loop moved the newest keyframe.
   std::optional<MapCorrection> add(const NodePose& pose, const Points& points,
-                                   const std::vector<Vec3>& normals);
+                                   const std::vector<Vec3>& normals,
+                                   const Eigen::Matrix2d& unseen = Eigen::Matrix2d::Zero());
 
   // Optimises the whole graph once more (the end of a run); the correction as add()'s.
   std::optional<MapCorrection> optimise();
@@ -97,7 +100,8 @@ class KeyframeGraph {
     double angular = 0.0;   // rad
   };
 
-  Constraint step_constraint(const NodePose& from, const NodePose& to) const;
+  Constraint step_constraint(const NodePose& from, const NodePose& to,
+                             const Eigen::Matrix2d& unseen_growth) const;
   std::vector<PathUncertainty> uncertainty_from(std::size_t newest) const;
   std::vector<Candidate> candidates(std::size_t newest) const;
   void search(std::size_t newest, const Candidate& candidate);
@@ -114,6 +118,7 @@ class KeyframeGraph {
   // Where the front end's map has each keyframe: the graph's poses when it was last rebuilt on
   // them, the front end's own for the keyframes since.
   std::vector<NodePose> in_front_end_;
+  std::vector<Eigen::Matrix2d> unseen_;  // add()'s, per keyframe
   std::size_t loops_unoptimised_ = 0;
   LoopCounts counts_;
 };

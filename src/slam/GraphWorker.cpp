@@ -59,8 +59,10 @@ void GraphWorker::process(GraphKeyframe keyframe) {
   const backend::MapCorrection to_graph = since(keyframe.frame);
   for (Vec3& p : keyframe.points) p = to_graph.transform * p;
   for (Vec3& n : keyframe.normals) n = to_graph.transform.linear() * n;
+  const Eigen::Matrix2d turn = to_graph.transform.linear().topLeftCorner<2, 2>();
   const std::optional<backend::MapCorrection> moved =
-      graph_.add(to_graph(keyframe.pose), keyframe.points, keyframe.normals);
+      graph_.add(to_graph(keyframe.pose), keyframe.points, keyframe.normals,
+                 turn * keyframe.unseen * turn.transpose());
   if (!keyframe.heading_turns.empty()) {
     // A loop's correction, if any, is folded into the turn's.
     if (moved) corrections_.push_back(*moved);

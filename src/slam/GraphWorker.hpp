@@ -35,6 +35,8 @@ struct GraphKeyframe {
   // When not empty: once this keyframe is in, every keyframe's heading turned by these (the
   // drift the front end learnt since they were made; KeyframeGraph::turn_headings).
   std::vector<double> heading_turns;
+  // x-y covariance (m^2) along what its scan left blind (KeyframeGraph::add), likewise.
+  Eigen::Matrix2d unseen = Eigen::Matrix2d::Zero();
 };
 
 struct GraphUpdate {

@@ -122,7 +122,11 @@ void VehicleSlam::add_to_graph(const ScanReport& report) {
   const WorldMap& map = pipeline_.map();
   const std::size_t first = pipeline_.keyframe_starts().back();
   keyframe_poses_.push_back(backend::node_of(report.pose));
-  GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_, {}};
+  // The motion prior's covariance along what the scan left blind: the graph's step is as unsure.
+  const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - report.seen.observed;
+  const Eigen::Matrix2d unseen =
+      (blind * report.covariance * blind.transpose()).topLeftCorner<2, 2>();
+  GraphKeyframe keyframe{keyframe_poses_.back(), report.added_points, {}, frame_, {}, unseen};
   if (!map.normals().empty()) {
     keyframe.normals.assign(map.normals().begin() + static_cast<std::ptrdiff_t>(first),
                             map.normals().end());

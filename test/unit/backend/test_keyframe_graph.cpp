@@ -126,5 +126,29 @@ TEST(KeyframeGraphTest, KeepsEachKeyframesPointsInItsFrame) {
   EXPECT_EQ(graph.counts().searches, 0u);
 }
 
+// Along a corridor's axis (world x) the front end's scans were blind and its motion prior's
+// variance grew by 4 m^2 from one keyframe to the next: the step between them is that unsure
+// along the axis, in the first keyframe's frame (turned a quarter left: its y), and as sure as
+// ever across it. After a fix (the variance back to zero) the next step is ordinary again.
+TEST(KeyframeGraphTest, AStepAlongABlindAxisIsAsUnsureAsThePriorGrew) {
+  const SlamConfig::LoopClosure config = loop_config();
+  KeyframeGraph graph(config);
+  const Eigen::Matrix2d blind_x = Eigen::Vector2d(4.0, 0.0).asDiagonal();
+  graph.add({Vec3(0.0, 0.0, 1.0), M_PI / 2}, {}, {});
+  graph.add({Vec3(1.0, 0.0, 1.0), M_PI / 2}, {}, {}, blind_x);
+  graph.add({Vec3(2.0, 0.0, 1.0), M_PI / 2}, {}, {}, Eigen::Matrix2d::Zero());
+  ASSERT_EQ(graph.graph().constraints().size(), 2u);
+  const double sigma = config.step_sigma + config.step_sigma_per_metre * 1.0;
+  const Eigen::Matrix2d blind_step =
+      graph.graph().constraints()[0].information.topLeftCorner<2, 2>().inverse();
+  EXPECT_NEAR(blind_step(0, 0), sigma * sigma, 1e-9);        // across the axis
+  EXPECT_NEAR(blind_step(1, 1), sigma * sigma + 4.0, 1e-9);  // along it
+  EXPECT_NEAR(blind_step(0, 1), 0.0, 1e-9);
+  const Eigen::Matrix2d fixed_step =
+      graph.graph().constraints()[1].information.topLeftCorner<2, 2>().inverse();
+  EXPECT_NEAR(fixed_step(0, 0), sigma * sigma, 1e-9);
+  EXPECT_NEAR(fixed_step(1, 1), sigma * sigma, 1e-9);
+}
+
 }  // namespace
 }  // namespace uavslam::backend

@@ -33,7 +33,7 @@ std::vector<backend::NodePose> inline_run(const std::vector<Flown>& flown) {
   for (const Flown& f : flown) {
     Points points;
     for (const Vec3& p : f.points) points.push_back(frame.transform * p);
-    worker.add({frame(f.pose), points, {}, taken, {}});
+    worker.add({frame(f.pose), points, {}, taken, {}, Eigen::Matrix2d::Zero()});
     if (std::optional<GraphUpdate> u = worker.take()) {
       frame = frame.then(u->correction);
       taken = u->frame;
@@ -50,7 +50,7 @@ TEST(GraphWorkerTest, AThreadThatIsNeverAskedGivesTheSameGraphAsInline) {
   const std::vector<Flown> flown = hall_flight();
   const std::vector<backend::NodePose> expected = inline_run(flown);
   GraphWorker worker(hall_config(), GraphWorker::Threading::Thread);
-  for (const Flown& f : flown) worker.add({f.pose, f.points, {}, 0, {}});
+  for (const Flown& f : flown) worker.add({f.pose, f.points, {}, 0, {}, Eigen::Matrix2d::Zero()});
   worker.finish();
   EXPECT_GT(worker.counts().accepted, 0u);
   const std::vector<backend::NodePose> poses = worker.poses();
@@ -73,10 +73,10 @@ TEST(GraphWorkerTest, HeadingTurnsMoveTheKeyframesAndTheUpdateSaysSo) {
   GraphWorker worker(hall_config(), GraphWorker::Threading::Inline);
   const std::vector<backend::NodePose> made{
       {Vec3(0.0, 0.0, 1.0), 0.0}, {Vec3(1.0, 0.0, 1.0), 0.0}, {Vec3(2.0, 0.0, 1.0), 0.0}};
-  worker.add({made[0], {}, {}, 0, {}});
-  worker.add({made[1], {}, {}, 0, {}});
+  worker.add({made[0], {}, {}, 0, {}, Eigen::Matrix2d::Zero()});
+  worker.add({made[1], {}, {}, 0, {}, Eigen::Matrix2d::Zero()});
   EXPECT_FALSE(worker.take().has_value());
-  worker.add({made[2], {}, {}, 0, {0.0, 0.1, 0.2}});
+  worker.add({made[2], {}, {}, 0, {0.0, 0.1, 0.2}, Eigen::Matrix2d::Zero()});
   const std::optional<GraphUpdate> update = worker.take();
   ASSERT_TRUE(update.has_value());
   EXPECT_EQ(update->headings_turned, 1u);
@@ -90,9 +90,9 @@ TEST(GraphWorkerTest, HeadingTurnsMoveTheKeyframesAndTheUpdateSaysSo) {
 
   // On the worker's own thread (slam_matcher) the same, once the worker has caught up.
   GraphWorker threaded(hall_config(), GraphWorker::Threading::Thread);
-  threaded.add({made[0], {}, {}, 0, {}});
-  threaded.add({made[1], {}, {}, 0, {}});
-  threaded.add({made[2], {}, {}, 0, {0.0, 0.1, 0.2}});
+  threaded.add({made[0], {}, {}, 0, {}, Eigen::Matrix2d::Zero()});
+  threaded.add({made[1], {}, {}, 0, {}, Eigen::Matrix2d::Zero()});
+  threaded.add({made[2], {}, {}, 0, {0.0, 0.1, 0.2}, Eigen::Matrix2d::Zero()});
   threaded.finish();
   const std::optional<GraphUpdate> last = threaded.take();
   ASSERT_TRUE(last.has_value());
