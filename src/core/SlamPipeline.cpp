@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/Angles.hpp"
 #include "core/Heading.hpp"
 #include "core/extensions/PriorAgreement.hpp"
 #include "core/extensions/Relocalisation.hpp"
@@ -22,7 +23,7 @@ bool is_well_formed(const Scan& scan) {
 }
 
 double angle_between(double a, double b) {
-  return std::abs(std::remainder(a - b, 2.0 * M_PI));
+  return std::abs(wrap_angle(a - b));
 }
 
 }  // namespace
@@ -127,7 +128,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
 
   // The heading the scan agreed with becomes the correction for this and later scans.
   if (match.yaw != 0.0) {
-    heading_correction_ = std::remainder(heading_correction_ + match.yaw, 2.0 * M_PI);
+    heading_correction_ = wrap_angle(heading_correction_ + match.yaw);
     orientation = corrected(*source_orientation);
     projected = project_scan(scan, orientation);
   }
@@ -284,8 +285,8 @@ Eigen::Matrix4d SlamPipeline::keyframe_covariance(const ScanReport& report) cons
 void SlamPipeline::follow_heading_drift(double stamp) {
   if (config_.icp.heading == HeadingMode::PeriodicCheck && drift_followed_until_ &&
       stamp > *drift_followed_until_) {
-    heading_correction_ = std::remainder(
-        heading_correction_ + heading_rate_.rate() * (stamp - *drift_followed_until_), 2.0 * M_PI);
+    heading_correction_ =
+        wrap_angle(heading_correction_ + heading_rate_.rate() * (stamp - *drift_followed_until_));
   }
   drift_followed_until_ = stamp;
 }
@@ -309,7 +310,7 @@ std::optional<SlamPipeline::DriftCheck> SlamPipeline::drift_check(const MatchRes
   for (const auto& [k, share] : map_uncertainty_.heading_shares(check.pairs)) {
     weight += share;
     made += share * keyframe_stamps_[k];
-    applied += share * std::remainder(heading_correction_ - keyframe_headings_[k], 2.0 * M_PI);
+    applied += share * wrap_angle(heading_correction_ - keyframe_headings_[k]);
   }
   if (weight <= 0.0) return std::nullopt;
   return DriftCheck{check.yaw, stamp - made / weight, applied / weight};
@@ -395,15 +396,15 @@ void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
     positions.push_back(keyframes[k].position);
     map_.add_points(keyframes[k].points, keyframes[k].normals);
     // Its heading as the correction it now has: what the drift's checks measure against.
-    keyframe_headings_[k] = std::remainder(keyframe_headings_[k] + keyframes[k].turn, 2.0 * M_PI);
+    keyframe_headings_[k] = wrap_angle(keyframe_headings_[k] + keyframes[k].turn);
   }
   map_uncertainty_.move_keyframes(first_points, positions);
   nearest_.clear();  // the warm start's indices were the old map's
-  heading_correction_ = std::remainder(heading_correction_ + yaw, 2.0 * M_PI);
+  heading_correction_ = wrap_angle(heading_correction_ + yaw);
   pose_.position = correction * pose_.position;
   pose_.orientation = yaw_rotation(yaw) * pose_.orientation;
   last_map_update_position_ = correction * last_map_update_position_;
-  last_map_update_heading_ = std::remainder(last_map_update_heading_ + yaw, 2.0 * M_PI);
+  last_map_update_heading_ = wrap_angle(last_map_update_heading_ + yaw);
 }
 
 }  // namespace uavslam

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include "core/Angles.hpp"
+
 namespace uavslam {
 namespace {
 
@@ -59,9 +61,8 @@ std::vector<double> HeadingRate::turns(const std::vector<double>& stamps,
   }
   std::vector<double> turns;
   for (std::size_t k = 0; k < n; ++k) {
-    turns.push_back(std::remainder(
-        line->rate * (stamps[k] - stamps.front()) - (corrections[k] - corrections.front()),
-        2.0 * M_PI));
+    turns.push_back(wrap_angle(line->rate * (stamps[k] - stamps.front()) -
+                               (corrections[k] - corrections.front())));
   }
   return turns;
 }
