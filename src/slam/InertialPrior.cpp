@@ -159,9 +159,18 @@ void InertialPrior::update(State& s, const ScanReport& report) const {
   keep.block<3, 3>(6, 6) = observed_body_axes(seen, body);
   const Eigen::MatrixXd K = keep * s.P * H.transpose() * S.inverse();
   s.x += K * innovation;
-  // Joseph form: right for any gain, and stays symmetric and positive however small Rz is.
+  // Joseph form: right for any gain, and stays symmetric and positive however small Rz is. The
+  // gain takes the match's own covariance (H^-1 sigma^2), so the filter follows the matches
+  // closely, as the fixed-count ICP needs to start near home (a trial fed the learnt one and
+  // smoothed the matches' correlated errors: demo 0.038 m, docs/algorithm.md). But the matches err
+  // as MatchNoise learnt (report.covariance, several times more), and that is what the state
+  // carries on: a prediction's covariance as small as the match's own would put the innovations
+  // all on the match, and the learnt scale would take the prediction's error for the match's.
+  // The odometry prior takes report.covariance too.
   const StateMatrix IKH = StateMatrix::Identity() - K * H;
-  s.P = IKH * s.P * IKH.transpose() + K * Rz * K.transpose();
+  const Eigen::MatrixXd learnt =
+      report.covariance.isZero() ? Rz : Eigen::MatrixXd(E.transpose() * report.covariance * E);
+  s.P = IKH * s.P * IKH.transpose() + K * learnt * K.transpose();
 }
 
 // The velocity source's sample, turned into the map frame by the heading correction.

@@ -10,12 +10,13 @@
 //   F  = [I  I dt  -R dt^2/2;  0  I  -R dt;  0  0  I],  Q = diag(0, s_a^2 dt I, s_b^2 dt I)
 // Update at a matched scan: z = E^T p_scan, H = E^T [I 0 0], R_z = E^T Sigma_scan E, where the
 // columns of E span the directions the scan fixed (ScanReport::seen): a blind direction neither
-// corrects the state nor is corrected by it. So the bias and velocity are estimated from the
-// matched poses wherever the walls allow, and carry the vehicle through where they do not.
-// A third source, the autopilot's velocity (motion.fuse_velocity), updates the velocity at each
-// of its samples: z = R_h v_source, H = [0 I 0], R_z = R_h Sigma_v R_h^T (R_h: the heading
-// correction). Where the scan is blind the position then drifts with the velocity's noise,
-// integrated, instead of with an accelerometer bias nothing observes (1/2 b t^2).
+// corrects the state nor is corrected by it. The gain takes the match's own Sigma_scan, the
+// covariance (Joseph form) the error the match really has, as MatchNoise learnt it. So the bias and
+// velocity are estimated from the matched poses wherever the walls allow, and carry the vehicle
+// through where they do not. A third source, the autopilot's velocity (motion.fuse_velocity),
+// updates the velocity at each of its samples: z = R_h v_source, H = [0 I 0], R_z = R_h Sigma_v
+// R_h^T (R_h: the heading correction). Where the scan is blind the position then drifts with the
+// velocity's noise, integrated, instead of with an accelerometer bias nothing observes (1/2 b t^2).
 #pragma once
 
 #include <cstddef>

@@ -275,18 +275,18 @@ TEST_F(UavslamCli, TheBackEndClosesTheLoopThroughTheOtherRoom) {
 }
 
 // The 60 m corridor there and back (corridor.yaml) with the noise of seed 11: along the axis the
-// scans are blind for most of the way out, and the IMU's prior carried the vehicle 7.6 m short of
-// where it was; the map it made there is as wrong, and the scans agree with it all the way back.
-// Only the take-off's map, at the end wall, says otherwise. The graph's steps are as unsure along
-// the axis as the prior grew, so the loop back there is searched that far and the final graph
-// keeps it (6.21 m after loops before the steps carried the blind stretch: no loop was searched).
+// scans are blind for most of the way out, and the IMU's prior carried the vehicle short of where
+// it was (1.2 m; 7.6 m while the inertial filter took the matches for surer than they are); the
+// map it made there is as wrong, and the scans agree with it all the way back. Only the take-off's
+// map, at the end wall, says otherwise. The graph's steps are as unsure along the axis as the
+// prior grew, so the loop back there is searched that far and the final graph keeps it.
 TEST_F(UavslamCli, TheBackEndFindsTheLoopABlindCorridorHid) {
   const nlohmann::json closed = simulate(dir / "c", "corridor", "config/slam.yaml", "--seed 11");
   EXPECT_GE(closed.at("loops").at("accepted").get<int>(), 1);
   const double flown = closed.at("trajectory_errors").at("ate_rmse_m").get<double>();
   const double after = closed.at("trajectory_errors_after_loops").at("ate_rmse_m").get<double>();
-  EXPECT_GT(flown, 5.0) << "the flight must have lost the axis for the test to mean anything";
-  EXPECT_LT(after, 2.0) << "as flown " << flown << " m";
+  EXPECT_GT(flown, 1.0) << "the flight must have lost the axis for the test to mean anything";
+  EXPECT_LT(after, 0.4 * flown) << "as flown " << flown << " m";
 }
 
 // --seed: the same flight with other sensor noise (Monte Carlo runs); the same seed, the same run.

@@ -109,6 +109,34 @@ TEST(InertialPrior, MatchedPosesEstimateTheBiasAndTheVelocity) {
   EXPECT_LT((f.prior.velocity() - f.trajectory.velocity_at(6.0)).norm(), 0.01);
 }
 
+// The gain follows the matches as their own covariance says (H^-1 sigma^2, 1 mm here), but the
+// prediction's covariance is what the matches really err by, as MatchNoise learnt it (report.
+// covariance, 25 times the variance here): the state carries on the match's 5 mm, not its 1 mm.
+// The same flight, the same (true) matches: the motion predicted as well, the covariance grown.
+TEST(InertialPrior, ThePredictionCarriesTheErrorTheMatchesReallyHave) {
+  const auto predicted = [](double learnt_scale) {
+    Flight f;
+    f.start();
+    f.fly_to(3.0, [&](double t) {
+      ScanReport r = report_at(f.trajectory, t);
+      r.covariance = learnt_scale * r.seen.covariance;
+      return r;
+    });
+    f.feed_to(3.0 + kScanPeriod);
+    return f.prior.motion_to(3.0 + kScanPeriod, 0.0);
+  };
+  const MotionPrediction own = predicted(1.0);
+  const MotionPrediction learnt = predicted(25.0);
+  ASSERT_TRUE(own.covariance && learnt.covariance);
+  Flight truth;
+  const Vec3 step =
+      truth.trajectory.pose_at(3.0 + kScanPeriod).position - truth.trajectory.pose_at(3.0).position;
+  EXPECT_LT((learnt.motion - step).norm(), 1e-3);
+  EXPECT_LT((own.motion - step).norm(), 1e-3);
+  EXPECT_GT((*learnt.covariance)(0, 0), 10.0 * (*own.covariance)(0, 0));
+  EXPECT_GT((*learnt.covariance)(0, 0), 1e-6);  // at least a match's own millimetre
+}
+
 // A matched pose says nothing of a direction the scan could not see: a 1 m error along it does not
 // pull the state, which stays with the integrated motion.
 TEST(InertialPrior, ABlindDirectionIsNeitherMeasuredNorPulled) {
