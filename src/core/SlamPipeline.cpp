@@ -136,8 +136,8 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   // Steps 6-7: report the new pose; a keyframe after enough motion.
   pose_ = {scan.stamp, position, orientation};
   covariance_ = report.covariance;
-  if (config_.degeneracy.threshold > 0.0) map_covariance_ = map_part(report, match);
-  report.map_covariance = map_covariance_.topLeftCorner<3, 3>();
+  if (config_.degeneracy.threshold > 0.0) map_error_ = map_part(report, match);
+  report.map_covariance = map_total().topLeftCorner<3, 3>();
   report.pose = pose_;
   if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
   return finish(report);
@@ -152,7 +152,7 @@ ScanReport SlamPipeline::carried_by_prior(ScanReport& report, const Pose& start,
   pose_ = start;
   report.pose = pose_;
   report.covariance = covariance_;
-  report.map_covariance = map_covariance_.topLeftCorner<3, 3>();
+  report.map_covariance = map_total().topLeftCorner<3, 3>();
   report.dead_reckoned = true;
   return finish(report);
 }
@@ -184,7 +184,6 @@ MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted)
     scans_since_heading_check_ = 0;
     MatchResult checked = matcher_.match(map_, points, start, true, &nearest_);
     if (checked.outcome == ScanOutcome::Accepted) {
-      heading_drift_.add_check(checked.yaw);
       // The drift from the checks before keyframes only: those between two keyframes see the
       // same map from nearly the same place and share its noise, which a rate learnt from all of
       // them took for a drift (demo.yaml, seed 2: 1 degree a minute for 15 s).
@@ -247,37 +246,65 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
 // those fixes were made against (the inertial filter takes map-relative fixes), so the map's
 // uncertainty at them still stands under it:
 //   Sigma_map = T Sigma_pairs T^T + B Sigma_map,last B^T,   T = diag(P, 1), B = diag(I - P, 0)
-Eigen::Matrix4d SlamPipeline::map_part(const ScanReport& report, const MatchResult& match) const {
+// and the drift's terms likewise: a = T a_pairs + B a_last, h = T h_pairs + B h_last.
+MapError SlamPipeline::map_part(const ScanReport& report, const MatchResult& match) const {
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
   T.topLeftCorner<3, 3>() = report.seen.observed;
   Eigen::Matrix4d B = Eigen::Matrix4d::Zero();
   B.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() - report.seen.observed;
-  return T * map_uncertainty_.of_match(match.pairs) * T.transpose() +
-         B * map_covariance_ * B.transpose();
+  const MapError pairs =
+      map_uncertainty_.of_match(match.pairs, match.position, heading_drift_terms());
+  MapError error;
+  error.covariance =
+      T * pairs.covariance * T.transpose() + B * map_error_.covariance * B.transpose();
+  error.drift = T * pairs.drift + B * map_error_.drift;
+  error.applied = T * pairs.applied + B * map_error_.applied;
+  return error;
 }
 
 // The covariance over (x, y, z, yaw) a keyframe joins the map with: the map's where the scan
-// matched, plus the match's own, plus the heading's own error, which turns the keyframe's points
-// about it. Checked against the map (icp.heading: periodic_check), the heading is the map's up to
-// what drifts between checks (extensions/HeadingDrift). Taken from the source as it is (the
-// seed), it is the source's, imu.heading_sigma, and not the map's. Estimated in every scan, the
-// map's (the match's own yaw noise is not estimated).
+// matched plus the match's own. The heading's: taken from the source as it is (the seed), the
+// source's, imu.heading_sigma, and not the map's; estimated in every scan, the map's (the match's
+// own yaw noise is not estimated); checked against the map (icp.heading: periodic_check), the
+// source's drift not followed, which keyframe_drift() carries apart.
 Eigen::Matrix4d SlamPipeline::keyframe_covariance(const ScanReport& report) const {
-  Eigen::Matrix4d covariance = map_covariance_;
+  Eigen::Matrix4d covariance = map_error_.covariance;
   covariance.topLeftCorner<3, 3>() += report.covariance;
-  switch (config_.icp.heading) {
-    case HeadingMode::Source:
-      covariance.row(3).setZero();
-      covariance.col(3).setZero();
-      covariance(3, 3) = config_.imu.heading_sigma * config_.imu.heading_sigma;
-      break;
-    case HeadingMode::PeriodicCheck:
-      covariance(3, 3) += heading_drift_.variance_per_keyframe();
-      break;
-    case HeadingMode::EveryScan:
-      break;
+  if (config_.icp.heading == HeadingMode::Source) {
+    covariance.row(3).setZero();
+    covariance.col(3).setZero();
+    covariance(3, 3) = config_.imu.heading_sigma * config_.imu.heading_sigma;
   }
   return covariance;
+}
+
+// The drift terms of the heading the vehicle has now (MapError): the time since the first
+// keyframe (a) and the correction applied since (h). The source's heading is absolute but for the
+// drift: it is off by r_true dt - h whatever map it was checked against. Checked headings only.
+Eigen::Vector2d SlamPipeline::heading_drift_terms() const {
+  if (config_.icp.heading != HeadingMode::PeriodicCheck || keyframe_stamps_.empty()) {
+    return Eigen::Vector2d::Zero();
+  }
+  return {pose_.stamp - keyframe_stamps_.front(),
+          wrap_angle(heading_correction_ - keyframe_headings_.front())};
+}
+
+// A keyframe's drift terms: its heading's as above, its position's the map's where it matched.
+std::pair<Eigen::Vector4d, Eigen::Vector4d> SlamPipeline::keyframe_drift() const {
+  const Eigen::Vector2d heading = heading_drift_terms();
+  Eigen::Vector4d drift = map_error_.drift;
+  Eigen::Vector4d applied = map_error_.applied;
+  drift(3) = heading(0);
+  applied(3) = heading(1);
+  return {drift, applied};
+}
+
+// The map's covariance where the scan matched, the drift's part weighed with the rate as the
+// checks know it now (checked headings only).
+Eigen::Matrix4d SlamPipeline::map_total() const {
+  if (config_.icp.heading != HeadingMode::PeriodicCheck) return map_error_.total(0.0, 0.0);
+  const HeadingRate::Estimate rate = heading_rate_.estimate();
+  return map_error_.total(rate.rate, rate.variance);
 }
 
 // Beyond the seed: the source's heading drift as the checks have learnt it (extensions/
@@ -370,7 +397,9 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
   if (config_.icp.metric == IcpMetric::PointToLine) {
     normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
   }
-  map_uncertainty_.add_keyframe(map_.size(), pose_.position, keyframe_covariance(report));
+  const auto [drift, applied] = keyframe_drift();
+  map_uncertainty_.add_keyframe(map_.size(), pose_.position, keyframe_covariance(report), drift,
+                                applied);
   keyframe_stamps_.push_back(pose_.stamp);
   keyframe_headings_.push_back(heading_correction_);
   report.added_points = map_.add_points(aligned, normals);
@@ -389,6 +418,7 @@ void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
   }
   map_ = WorldMap(make_nearest_neighbour_index(config_.nearest_neighbour),
                   config_.map.min_point_spacing);
+  const double drift_rate = heading_rate_.estimate().rate;
   std::vector<std::size_t> first_points;
   std::vector<Vec3> positions;
   for (std::size_t k = 0; k < keyframes.size(); ++k) {
@@ -397,6 +427,7 @@ void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
     map_.add_points(keyframes[k].points, keyframes[k].normals);
     // Its heading as the correction it now has: what the drift's checks measure against.
     keyframe_headings_[k] = wrap_angle(keyframe_headings_[k] + keyframes[k].turn);
+    if (keyframes[k].turn != 0.0) map_uncertainty_.turn(k, keyframes[k].turn, drift_rate);
   }
   map_uncertainty_.move_keyframes(first_points, positions);
   nearest_.clear();  // the warm start's indices were the old map's

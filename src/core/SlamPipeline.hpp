@@ -7,6 +7,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "core/ImuBuffer.hpp"
 #include "core/MotionPrediction.hpp"
@@ -15,7 +16,6 @@
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
-#include "core/extensions/HeadingDrift.hpp"
 #include "core/extensions/HeadingRate.hpp"
 #include "core/extensions/MapUncertainty.hpp"
 #include "core/extensions/MatchNoise.hpp"
@@ -131,8 +131,11 @@ class SlamPipeline {
   bool moved_enough_for_map_update(const Pose& pose) const;
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
   ScanPoints scan_points(const ProjectedScan& projected) const;
-  Eigen::Matrix4d map_part(const ScanReport& report, const MatchResult& match) const;
+  MapError map_part(const ScanReport& report, const MatchResult& match) const;
   Eigen::Matrix4d keyframe_covariance(const ScanReport& report) const;
+  Eigen::Vector2d heading_drift_terms() const;
+  std::pair<Eigen::Vector4d, Eigen::Vector4d> keyframe_drift() const;
+  Eigen::Matrix4d map_total() const;
   void follow_heading_drift(double stamp);
   // What a check before a keyframe says of the source's drift (HeadingRate::add_check's terms).
   struct DriftCheck {
@@ -166,8 +169,7 @@ class SlamPipeline {
   MatchNoise match_noise_;
   PriorGate gate_;
   MapUncertainty map_uncertainty_;
-  HeadingDrift heading_drift_;
-  Eigen::Matrix4d map_covariance_ = Eigen::Matrix4d::Zero();  // the last match's, (x, y, z, yaw)
+  MapError map_error_;  // the last match's, (x, y, z, yaw)
   HeadingRate heading_rate_;
   std::optional<double> drift_followed_until_;  // the stamp the drift was added up to
   std::optional<DriftCheck> drift_check_;       // this scan's, until the gate has judged it

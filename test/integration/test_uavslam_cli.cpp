@@ -149,8 +149,19 @@ TEST_F(UavslamCli, ThePlainCorridorsAxisIsFlaggedAndCarriedByTheImu) {
   // Issue 17's target, with the scenario's own noise seed (test/bench/monte_carlo.sh: other seeds).
   EXPECT_LE(ate_horizontal(uav), 0.10);
   // Its consistency target: the covariance (the match's, the map's, the IMU's along the axis)
-  // covers the error, NEES averaging within [0.5, 2] x the 3 dimensions.
-  const double nees = uav.at("consistency").at("nees_mean").get<double>();
+  // covers the error, NEES averaging within [0.5, 2] x the 3 dimensions over flights: four of
+  // them, noise seeds 1 to 4 (1.93, 1.28, 1.49, 2.67; one flight's NEES varies from 0.7 to 8 over
+  // 16 seeds, their mean 2.35: docs/algorithm.md).
+  double nees = 0.0;
+  for (int seed = 1; seed <= 4; ++seed) {
+    const std::string name = "seed" + std::to_string(seed);
+    nees +=
+        simulate(dir / name, "plain_corridor", "config/slam.yaml", "--seed " + std::to_string(seed))
+            .at("consistency")
+            .at("nees_mean")
+            .get<double>() /
+        4.0;
+  }
   EXPECT_GE(nees, 1.5);
   EXPECT_LE(nees, 6.0);
   // Airborne scans (above 1 m) see one degenerate direction: the corridor's axis.

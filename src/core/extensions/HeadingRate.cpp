@@ -19,6 +19,8 @@ constexpr double kTurnSignificance = 5.0;
 // Checks before a rate is believed at all: the residual variance of a line through a few of them
 // is itself a guess (a take-off's first three put 7 degrees a minute on a steady source).
 constexpr std::size_t kMinChecks = 30;
+// A line's standard error needs a residual: three checks.
+constexpr std::size_t kMinChecksForLine = 3;
 
 }  // namespace
 
@@ -34,12 +36,12 @@ void HeadingRate::add_check(double disagreement, double span, double applied) {
 }
 
 double HeadingRate::rate() const {
-  const std::optional<Fit> line = fit();
+  const std::optional<Fit> line = fit(kMinChecks);
   return line && std::abs(line->rate) > kSignificance * line->sigma ? line->rate : 0.0;
 }
 
-std::optional<HeadingRate::Fit> HeadingRate::fit() const {
-  if (prior_sigma_ <= 0.0 || n_ < kMinChecks) return std::nullopt;
+std::optional<HeadingRate::Fit> HeadingRate::fit(std::size_t min_checks) const {
+  if (prior_sigma_ <= 0.0 || n_ < min_checks) return std::nullopt;
   const double n = double(n_);
   const double s_tt = std::max(0.0, tt_ - t_ * t_ / n);
   const double s_tm = tm_ - t_ * m_ / n;
@@ -54,14 +56,25 @@ std::optional<HeadingRate::Fit> HeadingRate::fit() const {
 
 std::vector<double> HeadingRate::turns(const std::vector<double>& stamps,
                                        const std::vector<double>& corrections) const {
-  const std::optional<Fit> line = fit();
-  const std::size_t n = std::min(stamps.size(), corrections.size());
+  const std::optional<Fit> line = fit(kMinChecks);
   if (!line || std::abs(line->rate) <= kTurnSignificance * line->sigma) {
-    return std::vector<double>(n, 0.0);
+    return std::vector<double>(std::min(stamps.size(), corrections.size()), 0.0);
   }
+  return turns_by(*line, stamps, corrections);
+}
+
+HeadingRate::Estimate HeadingRate::estimate() const {
+  const std::optional<Fit> line = fit(kMinChecksForLine);
+  if (!line) return {0.0, prior_sigma_ * prior_sigma_};
+  return {line->rate, line->sigma * line->sigma};
+}
+
+std::vector<double> HeadingRate::turns_by(const Fit& line, const std::vector<double>& stamps,
+                                          const std::vector<double>& corrections) {
+  const std::size_t n = std::min(stamps.size(), corrections.size());
   std::vector<double> turns;
   for (std::size_t k = 0; k < n; ++k) {
-    turns.push_back(wrap_angle(line->rate * (stamps[k] - stamps.front()) -
+    turns.push_back(wrap_angle(line.rate * (stamps[k] - stamps.front()) -
                                (corrections[k] - corrections.front())));
   }
   return turns;

@@ -54,13 +54,29 @@ class HeadingRate {
   std::vector<double> turns(const std::vector<double>& stamps,
                             const std::vector<double>& corrections) const;
 
+  // The line as it stands, for the map's covariance (MapUncertainty): its rate, however few
+  // standard errors, and the variance of that rate's error (rad/s, rad^2/s^2), from the third
+  // check on; before, 0 and sigma_r^2 (0 and 0 without a prior). A keyframe made dt after the
+  // first with the correction H (since the first's) is off by r_true dt - H: the rate's error is
+  // one for all keyframes, so as the checks pin it down the whole map's heading is surer, the
+  // early keyframes' too, and the part of the drift the line knows of but nobody applied shows.
+  struct Estimate {
+    double rate = 0.0;
+    double variance = 0.0;
+  };
+  Estimate estimate() const;
+
  private:
   struct Fit {
     double rate = 0.0;   // r above
     double sigma = 0.0;  // its standard error
   };
-  // The line through the checks; none before 30 checks, without a prior, or without a span.
-  std::optional<Fit> fit() const;
+  // The line through the checks; none before min_checks of them, without a prior, or without a
+  // span.
+  std::optional<Fit> fit(std::size_t min_checks) const;
+  // turn_k above with the line's rate.
+  static std::vector<double> turns_by(const Fit& line, const std::vector<double>& stamps,
+                                      const std::vector<double>& corrections);
 
   double prior_sigma_;
   // Over the checks: their count and the sums of dt, m, dt^2, dt m and m^2.

@@ -37,10 +37,19 @@ Vec3 perp(const Vec3& v) {
 }  // namespace
 
 void MapUncertainty::add_keyframe(std::size_t first_point, const Vec3& position,
-                                  const Eigen::Matrix4d& covariance) {
+                                  const Eigen::Matrix4d& covariance, const Eigen::Vector4d& drift,
+                                  const Eigen::Vector4d& applied) {
   first_points_.push_back(first_point);
   positions_.push_back(position);
   roots_.push_back(square_root(covariance));
+  drifts_.push_back(drift);
+  applied_.push_back(applied);
+}
+
+void MapUncertainty::turn(std::size_t k, double turn, double rate) {
+  if (k >= applied_.size()) return;
+  applied_[k](3) += turn;
+  applied_[k].head<3>() = drifts_[k].head<3>() * rate;
 }
 
 void MapUncertainty::move_keyframes(const std::vector<std::size_t>& first_points,
@@ -77,20 +86,31 @@ MapUncertainty::Grouped MapUncertainty::by_keyframe(const Correspondences& pairs
   return grouped;
 }
 
-Eigen::Matrix4d MapUncertainty::of_match(const Correspondences& pairs) const {
+MapError MapUncertainty::of_match(const Correspondences& pairs, const Vec3& position,
+                                  const Eigen::Vector2d& scan_drift) const {
   const Grouped grouped = by_keyframe(pairs);
-  if (grouped.keyframes.empty()) return Eigen::Matrix4d::Zero();
+  MapError error;
+  if (grouped.keyframes.empty()) return error;
   const double horizontal = grouped.total.topLeftCorner<2, 2>().trace();
   const Eigen::Matrix3d inverse = pseudo_inverse(grouped.total);
   Eigen::Matrix4d L = Eigen::Matrix4d::Zero();
+  Vec3 lever = Vec3::Zero();  // sum_i H_i perp(d_i - p)
   for (const auto& [k, own] : grouped.keyframes) {
     Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
     A.topLeftCorner<3, 3>() = inverse * own.information;
     A.topRightCorner<3, 1>() = inverse * own.turn;
     A(3, 3) = horizontal > 0.0 ? own.information.topLeftCorner<2, 2>().trace() / horizontal : 0.0;
     L += A * roots_[k];
+    error.drift += A * drifts_[k];
+    error.applied += A * applied_[k];
+    lever += own.turn + own.information * perp(positions_[k] - position);
   }
-  return L * L.transpose();
+  error.covariance = L * L.transpose();
+  // The scan's own heading error turns its points about the vehicle: the match moves by -g eps.
+  const Vec3 g = inverse * lever;
+  error.drift.head<3>() -= g * scan_drift(0);
+  error.applied.head<3>() -= g * scan_drift(1);
+  return error;
 }
 
 std::vector<std::pair<std::size_t, double>> MapUncertainty::heading_shares(

@@ -32,12 +32,38 @@
 
 namespace uavslam {
 
+// What a match inherits of the map's error, over (x, y, z, yaw): the covariance its keyframes'
+// own errors give (L L^T above), and apart, the error the heading's drift gives it, e = a r - h:
+// the source's heading drifts at the rate r (rad/s), one for all keyframes, and a keyframe made
+// dt after the first with the correction H (since the first's) is off by r dt - H; a and h are
+// how the match moves with the two (a per rad/s). The rate is known as well as the heading
+// checks know it (HeadingRate::Estimate), and only when the total is wanted: as the checks pin
+// it down, the whole map is surer, its early keyframes and the positions they turned too.
+struct MapError {
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d drift = Eigen::Vector4d::Zero();    // a
+  Eigen::Vector4d applied = Eigen::Vector4d::Zero();  // h
+  // The whole covariance, given the rate r and its error's variance:
+  //   Sigma + (a r - h)(a r - h)^T + var(r) a a^T
+  Eigen::Matrix4d total(double rate, double rate_variance) const {
+    const Eigen::Vector4d known = drift * rate - applied;
+    return covariance + known * known.transpose() + rate_variance * drift * drift.transpose();
+  }
+};
+
 class MapUncertainty {
  public:
   // The keyframe whose points start at map index first_point, taken at body position `position`,
-  // and its pose's covariance over (x, y, z, yaw) (m^2, rad^2).
+  // its pose's covariance over (x, y, z, yaw) (m^2, rad^2), and its drift's terms a and h
+  // (MapError; zero where the heading's drift is not modelled).
   void add_keyframe(std::size_t first_point, const Vec3& position,
-                    const Eigen::Matrix4d& covariance);
+                    const Eigen::Matrix4d& covariance,
+                    const Eigen::Vector4d& drift = Eigen::Vector4d::Zero(),
+                    const Eigen::Vector4d& applied = Eigen::Vector4d::Zero());
+  // Keyframe k was turned by `turn` (rad) to where the drift's rate r puts it (HeadingRate::
+  // turns): its correction grows by it, and its position, placed again on the turned map, carries
+  // the drift as the rate says (h = a r there).
+  void turn(std::size_t k, double turn, double rate);
 
   std::size_t keyframes() const { return first_points_.size(); }
   // Each keyframe's first point in the map, in keyframe order.
@@ -49,8 +75,13 @@ class MapUncertainty {
                       const std::vector<Vec3>& positions);
 
   // Sigma_map above over (x, y, z, yaw) for the pairs (their map point and map_index, and the
-  // information pair_information gives them); zero when no pair holds information.
-  Eigen::Matrix4d of_match(const Correspondences& pairs) const;
+  // information pair_information gives them), with the drift's terms sum_k A_k a_k and
+  // sum_k A_k h_k; zero when no pair holds information.
+  // `position`: where the scan matched; scan_drift: the scan's own drift terms (its heading's a
+  // and h: a scan turned by eps about the vehicle moves the match by -g eps, g = H^-1 sum_i H_i
+  // perp(d_i - p), so a scan turned as its map is matches where a turned world would put it).
+  MapError of_match(const Correspondences& pairs, const Vec3& position,
+                    const Eigen::Vector2d& scan_drift = Eigen::Vector2d::Zero()) const;
   // s_k above: each keyframe's share of the pairs' horizontal information, the weight its heading
   // has in the heading the map holds where the pairs are (keyframes with none left out).
   std::vector<std::pair<std::size_t, double>> heading_shares(const Correspondences& pairs) const;
@@ -73,6 +104,8 @@ class MapUncertainty {
   std::vector<std::size_t> first_points_;  // ascending
   std::vector<Vec3> positions_;            // p_k
   std::vector<Eigen::Matrix4d> roots_;     // S_k: the covariances' symmetric square roots
+  std::vector<Eigen::Vector4d> drifts_;    // a_k
+  std::vector<Eigen::Vector4d> applied_;   // h_k
 };
 
 }  // namespace uavslam

@@ -124,5 +124,34 @@ TEST(HeadingRate, NothingIsLearntWithoutAPriorOrASpan) {
   EXPECT_EQ(on.rate(), 0.0);
 }
 
+// What the map's covariance takes: the prior until a line can be fitted (three checks), then the
+// line's rate however few standard errors, and a variance that shrinks as the checks add up (the
+// early keyframes' heading is the surer for it).
+TEST(HeadingRate, TheEstimateIsThePriorAtFirstThenTheLinesAsItTightens) {
+  const double prior = 5.0 * kDegree * kPerMinute;
+  const double drift = -2.0 * kDegree * kPerMinute;
+  std::mt19937 random(5);
+  std::normal_distribution<double> noise(0.0, 0.0015);
+  HeadingRate rate(prior);
+  EXPECT_EQ(rate.estimate().rate, 0.0);
+  EXPECT_DOUBLE_EQ(rate.estimate().variance, prior * prior);
+  double last = prior * prior;
+  for (int k = 1; k <= 60; ++k) {
+    const double dt = 1.0 + (k % 20);
+    rate.add_check(drift * dt + noise(random), dt, 0.0);
+    if (k == 2) {
+      EXPECT_DOUBLE_EQ(rate.estimate().variance, prior * prior);
+    }
+    if (k == 10 || k == 60) {
+      EXPECT_LT(rate.estimate().variance, 0.5 * last);
+      last = rate.estimate().variance;
+    }
+  }
+  EXPECT_EQ(rate.rate(), rate.estimate().rate);  // past 30 checks and three standard errors
+  EXPECT_NEAR(rate.estimate().rate, drift, 4.0 * std::sqrt(rate.estimate().variance));
+  const HeadingRate off(0.0);
+  EXPECT_EQ(off.estimate().variance, 0.0);
+}
+
 }  // namespace
 }  // namespace uavslam

@@ -41,6 +41,11 @@ struct Pairs {
   }
 };
 
+// The covariance a match inherits, from keyframes whose heading's drift is not modelled.
+Eigen::Matrix4d covariance_of(const MapUncertainty& map, const Correspondences& pairs) {
+  return map.of_match(pairs, Vec3::Zero()).covariance;
+}
+
 MapUncertainty three_keyframes() {
   MapUncertainty map;
   map.add_keyframe(0, Vec3::Zero(),
@@ -52,15 +57,16 @@ MapUncertainty three_keyframes() {
 
 TEST(MapUncertainty, AMatchOnOneKeyframeInheritsItsCovariance) {
   const MapUncertainty map = three_keyframes();
-  EXPECT_TRUE(map.of_match(Pairs{}.pairs).isZero());
+  EXPECT_TRUE(covariance_of(map, Pairs{}.pairs).isZero());
   EXPECT_TRUE(
-      map.of_match(Pairs{}.wall(0, Vec3::UnitX()).wall(5, Vec3::UnitY()).floor(99).pairs).isZero());
+      covariance_of(map, Pairs{}.wall(0, Vec3::UnitX()).wall(5, Vec3::UnitY()).floor(99).pairs)
+          .isZero());
   EXPECT_TRUE(
-      map.of_match(Pairs{}.wall(100, Vec3::UnitX()).wall(149, Vec3::UnitY()).floor(120).pairs)
+      covariance_of(map, Pairs{}.wall(100, Vec3::UnitX()).wall(149, Vec3::UnitY()).floor(120).pairs)
           .isApprox(isotropic(4.0)));
-  EXPECT_TRUE(
-      map.of_match(Pairs{}.wall(150, Vec3::UnitX()).wall(1000, Vec3::UnitY()).floor(999).pairs)
-          .isApprox(isotropic(1.0)));
+  EXPECT_TRUE(covariance_of(
+                  map, Pairs{}.wall(150, Vec3::UnitX()).wall(1000, Vec3::UnitY()).floor(999).pairs)
+                  .isApprox(isotropic(1.0)));
 }
 
 // A corridor: the anchor's many wall pairs fix y, one door edge from a drifted keyframe fixes x.
@@ -70,7 +76,7 @@ TEST(MapUncertainty, EachKeyframeCountsInTheDirectionsItsPairsFixed) {
   Pairs corridor;
   for (std::size_t i = 0; i < 50; ++i) corridor.wall(i, Vec3::UnitY()).floor(i);
   corridor.wall(120, Vec3::UnitX());
-  const Eigen::Matrix4d covariance = map.of_match(corridor.pairs);
+  const Eigen::Matrix4d covariance = covariance_of(map, corridor.pairs);
   EXPECT_NEAR(covariance(0, 0), 4.0, 1e-9);
   EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
   EXPECT_NEAR(covariance(2, 2), 0.0, 1e-9);
@@ -82,7 +88,7 @@ TEST(MapUncertainty, EachKeyframeCountsInTheDirectionsItsPairsFixed) {
 TEST(MapUncertainty, KeyframesThatFixTheSameDirectionAreTakenAsOneError) {
   const MapUncertainty map = three_keyframes();
   const Eigen::Matrix4d covariance =
-      map.of_match(Pairs{}.wall(1, Vec3::UnitX()).wall(101, Vec3::UnitX()).pairs);
+      covariance_of(map, Pairs{}.wall(1, Vec3::UnitX()).wall(101, Vec3::UnitX()).pairs);
   EXPECT_NEAR(covariance(0, 0), 1.0, 1e-9);
   EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
 }
@@ -125,7 +131,7 @@ TEST(MapUncertainty, AKeyframesHeadingErrorReachesAFarMatchByItsLeverArm) {
   heading_only(3, 3) = 0.01;
   MapUncertainty map;
   map.add_keyframe(0, Vec3::Zero(), heading_only);
-  const Eigen::Matrix4d far = map.of_match(walls_around_ten_metres_east());
+  const Eigen::Matrix4d far = covariance_of(map, walls_around_ten_metres_east());
   EXPECT_NEAR(far(0, 0), 0.0, 1e-12);
   EXPECT_NEAR(far(1, 1), 1.0, 1e-9);
   EXPECT_NEAR(far(3, 3), 0.01, 1e-12);
@@ -133,8 +139,48 @@ TEST(MapUncertainty, AKeyframesHeadingErrorReachesAFarMatchByItsLeverArm) {
   // The same points matched from a keyframe taken beside them: no lever arm, no inherited error.
   MapUncertainty near;
   near.add_keyframe(0, Vec3(10.0, 0.0, 0.0), heading_only);
-  const Eigen::Matrix4d beside = near.of_match(walls_around_ten_metres_east());
+  const Eigen::Matrix4d beside = covariance_of(near, walls_around_ten_metres_east());
   EXPECT_NEAR((beside.topLeftCorner<3, 3>().norm()), 0.0, 1e-12);
+}
+
+// The heading's drift: a keyframe made 10 s after the first is off by r x 10 s, a = (0, 0, 0, 10)
+// per rad/s. Matched from where it was taken, against points 10 m east: an unturned scan is pulled
+// north by the lever arm (g = (0, 10) per rad: 100 per rad/s); a scan turned as its map is, as
+// the source turns it too, matches where it stands (the scan's own drift terms, the same 10 s).
+TEST(MapUncertainty, AScanTurnedAsItsMapIsMatchesWhereAWorldTurnedAsAWholePutsIt) {
+  MapUncertainty map;
+  map.add_keyframe(0, Vec3::Zero(), isotropic(0.0), Eigen::Vector4d(0.0, 0.0, 0.0, 10.0));
+  const Correspondences pairs = walls_around_ten_metres_east();
+  const MapError unturned = map.of_match(pairs, Vec3::Zero());
+  EXPECT_TRUE(unturned.drift.isApprox(Eigen::Vector4d(0.0, 100.0, 0.0, 10.0)));
+  EXPECT_TRUE(unturned.covariance.isZero());
+  const MapError turned = map.of_match(pairs, Vec3::Zero(), Eigen::Vector2d(10.0, 0.0));
+  EXPECT_NEAR(turned.drift.head<3>().norm(), 0.0, 1e-9);
+  // Matched 10 m east, among the points: the world turned about the first keyframe moves the
+  // match by 10 m x the turn, north, whether the scan is turned or not (no lever about itself).
+  const MapError far = map.of_match(pairs, Vec3(10.0, 0.0, 0.0), Eigen::Vector2d(10.0, 0.0));
+  EXPECT_TRUE(far.drift.isApprox(Eigen::Vector4d(0.0, 100.0, 0.0, 10.0)));
+  // The total: at r = 1 mrad/s known to 1 mrad/s, sigma_y^2 = (100 r)^2 + 100^2 var(r).
+  EXPECT_NEAR(far.total(0.001, 1e-6)(1, 1), 0.01 + 0.01, 1e-12);
+  EXPECT_NEAR(far.total(0.001, 1e-6)(0, 0), 0.0, 1e-12);
+}
+
+// What was applied of the drift is no error: a keyframe whose heading was corrected by the drift
+// the rate says (h = a r) carries none of the known part, only the rate's uncertainty; turned
+// later by the back end (MapUncertainty::turn), likewise, its position placed again.
+TEST(MapUncertainty, TheDriftAppliedIsNoError) {
+  const double r = 0.001;
+  MapUncertainty corrected;
+  corrected.add_keyframe(0, Vec3::Zero(), isotropic(0.0), Eigen::Vector4d(0.0, 0.0, 0.0, 10.0),
+                         Eigen::Vector4d(0.0, 0.0, 0.0, 10.0 * r));
+  const Correspondences pairs = walls_around_ten_metres_east();
+  EXPECT_NEAR(corrected.of_match(pairs, Vec3::Zero()).total(r, 0.0).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(corrected.of_match(pairs, Vec3::Zero()).total(r, 1e-6)(1, 1), 0.01, 1e-12);
+  MapUncertainty turned;
+  turned.add_keyframe(0, Vec3::Zero(), isotropic(0.0), Eigen::Vector4d(0.0, 30.0, 0.0, 10.0));
+  EXPECT_NEAR(turned.of_match(pairs, Vec3::Zero()).total(r, 0.0)(1, 1), 0.13 * 0.13, 1e-12);
+  turned.turn(0, 10.0 * r, r);
+  EXPECT_NEAR(turned.of_match(pairs, Vec3::Zero()).total(r, 0.0).norm(), 0.0, 1e-12);
 }
 
 // Moved keyframes turn about their new positions.
@@ -146,7 +192,7 @@ TEST(MapUncertainty, MovedKeyframesTurnAboutTheirNewPositions) {
   EXPECT_THROW(map.move_keyframes({0, 5}, {Vec3::Zero(), Vec3::Zero()}), std::invalid_argument);
   map.move_keyframes({0}, {Vec3(0.0, 5.0, 0.0)});
   const Eigen::Matrix4d moved =
-      map.of_match(Pairs{}.wall(1, Vec3::UnitX(), Vec3(0.0, 0.0, 0.0)).pairs);
+      covariance_of(map, Pairs{}.wall(1, Vec3::UnitX(), Vec3(0.0, 0.0, 0.0)).pairs);
   EXPECT_NEAR(moved(0, 0), 25.0 * 0.01, 1e-9);  // 5 m south of the keyframe, along x
 }
 
@@ -156,17 +202,19 @@ TEST(MapUncertainty, AKeyframeThatAddedNothingOwnsNoPoint) {
   map.add_keyframe(10, Vec3::Zero(),
                    isotropic(9.0));  // every point within the spacing of older ones
   map.add_keyframe(10, Vec3::Zero(), diagonal(2.0, 3.0, 5.0));
-  EXPECT_TRUE(map.of_match(Pairs{}.wall(10, Vec3::UnitX()).wall(11, Vec3::UnitY()).floor(12).pairs)
-                  .isApprox(diagonal(2.0, 3.0, 5.0)));
-  EXPECT_TRUE(map.of_match(Pairs{}.wall(9, Vec3::UnitX()).wall(9, Vec3::UnitY()).floor(9).pairs)
-                  .isApprox(isotropic(1.0)));
+  EXPECT_TRUE(
+      covariance_of(map, Pairs{}.wall(10, Vec3::UnitX()).wall(11, Vec3::UnitY()).floor(12).pairs)
+          .isApprox(diagonal(2.0, 3.0, 5.0)));
+  EXPECT_TRUE(
+      covariance_of(map, Pairs{}.wall(9, Vec3::UnitX()).wall(9, Vec3::UnitY()).floor(9).pairs)
+          .isApprox(isotropic(1.0)));
 }
 
 TEST(MapUncertainty, PairsBeforeTheFirstKeyframeOrWithoutInformationCountForNothing) {
   MapUncertainty map;
   map.add_keyframe(10, Vec3::Zero(), isotropic(4.0));
-  EXPECT_TRUE(map.of_match(Pairs{}.wall(3, Vec3::UnitX()).pairs).isZero());
-  EXPECT_TRUE(map.of_match(Pairs{}.wall(12, Vec3::Zero()).pairs).isZero());  // no normal
+  EXPECT_TRUE(covariance_of(map, Pairs{}.wall(3, Vec3::UnitX()).pairs).isZero());
+  EXPECT_TRUE(covariance_of(map, Pairs{}.wall(12, Vec3::Zero()).pairs).isZero());  // no normal
 }
 
 }  // namespace
