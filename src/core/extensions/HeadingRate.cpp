@@ -36,12 +36,13 @@ void HeadingRate::add_check(double disagreement, double span, double applied) {
 }
 
 double HeadingRate::rate() const {
+  if (prior_sigma_ <= 0.0) return 0.0;
   const std::optional<Fit> line = fit(kMinChecks);
   return line && std::abs(line->rate) > kSignificance * line->sigma ? line->rate : 0.0;
 }
 
 std::optional<HeadingRate::Fit> HeadingRate::fit(std::size_t min_checks) const {
-  if (prior_sigma_ <= 0.0 || n_ < min_checks) return std::nullopt;
+  if (n_ < min_checks) return std::nullopt;
   const double n = double(n_);
   const double s_tt = std::max(0.0, tt_ - t_ * t_ / n);
   const double s_tm = tm_ - t_ * m_ / n;
@@ -49,14 +50,14 @@ std::optional<HeadingRate::Fit> HeadingRate::fit(std::size_t min_checks) const {
   // The residual variance of the line m = c + r dt fitted without the prior.
   const double unexplained = s_tt > 0.0 ? s_mm - s_tm * s_tm / s_tt : s_mm;
   const double noise = std::max(unexplained, 0.0) / (n - 2.0);  // sigma_d^2
-  const double prior = noise / (prior_sigma_ * prior_sigma_);
+  const double prior = prior_sigma_ > 0.0 ? noise / (prior_sigma_ * prior_sigma_) : 0.0;
   if (s_tt + prior <= 0.0) return std::nullopt;
   return Fit{s_tm / (s_tt + prior), std::sqrt(noise / (s_tt + prior))};
 }
 
 std::vector<double> HeadingRate::turns(const std::vector<double>& stamps,
                                        const std::vector<double>& corrections) const {
-  const std::optional<Fit> line = fit(kMinChecks);
+  const std::optional<Fit> line = prior_sigma_ > 0.0 ? fit(kMinChecks) : std::nullopt;
   if (!line || std::abs(line->rate) <= kTurnSignificance * line->sigma) {
     return std::vector<double>(std::min(stamps.size(), corrections.size()), 0.0);
   }

@@ -149,8 +149,16 @@ TEST(HeadingRate, TheEstimateIsThePriorAtFirstThenTheLinesAsItTightens) {
   }
   EXPECT_EQ(rate.rate(), rate.estimate().rate);  // past 30 checks and three standard errors
   EXPECT_NEAR(rate.estimate().rate, drift, 4.0 * std::sqrt(rate.estimate().variance));
-  const HeadingRate off(0.0);
+  // Without a prior nothing is followed, but the line still says how far the map may be turned.
+  HeadingRate off(0.0);
   EXPECT_EQ(off.estimate().variance, 0.0);
+  for (int k = 1; k <= 60; ++k) {
+    const double dt = 1.0 + (k % 20);
+    off.add_check(drift * dt + noise(random), dt, 0.0);
+  }
+  EXPECT_EQ(off.rate(), 0.0);
+  EXPECT_NEAR(off.estimate().rate, drift, 4.0 * std::sqrt(off.estimate().variance));
+  EXPECT_GT(off.estimate().variance, 0.0);
 }
 
 }  // namespace
