@@ -113,6 +113,19 @@ TEST_P(DriftingDemo, IsTheDemoWithADriftingImu) {
 INSTANTIATE_TEST_SUITE_P(Shipped, DriftingDemo, ::testing::Values("yaw_drift", "drift_change"),
                          [](const auto& info) { return info.param; });
 
+// The corridor's flight, world and noise, with a real accelerometer's constant bias.
+TEST(BiasedCorridorScenario, IsTheCorridorsFlightWithABiasedAccelerometer) {
+  const Scenario corridor = testing::shipped_scenario("corridor");
+  const Scenario biased = testing::shipped_scenario("biased_corridor");
+  ASSERT_EQ(biased.waypoints.size(), corridor.waypoints.size());
+  for (std::size_t i = 0; i < corridor.waypoints.size(); ++i) {
+    EXPECT_EQ(biased.waypoints[i].position, corridor.waypoints[i].position);
+  }
+  EXPECT_EQ(biased.seed, corridor.seed);
+  EXPECT_TRUE(corridor.imu.accel_bias.isZero());
+  EXPECT_NEAR(biased.imu.accel_bias.norm(), 0.04, 0.01);  // 2-3 mg per axis
+}
+
 TEST(DriftChangeScenario, TheDriftSettlesAfterNinetySeconds) {
   const Scenario drift = testing::shipped_scenario("drift_change");
   ASSERT_EQ(drift.imu.yaw_drift_changes.size(), 1u);
