@@ -36,8 +36,7 @@ void HeadingRate::add_check(double disagreement, double span, double applied) {
 }
 
 double HeadingRate::rate() const {
-  if (prior_sigma_ <= 0.0) return 0.0;
-  const std::optional<Fit> line = fit(kMinChecks);
+  const std::optional<Fit> line = followed_fit();
   return line && std::abs(line->rate) > kSignificance * line->sigma ? line->rate : 0.0;
 }
 
@@ -55,30 +54,31 @@ std::optional<HeadingRate::Fit> HeadingRate::fit(std::size_t min_checks) const {
   return Fit{s_tm / (s_tt + prior), std::sqrt(noise / (s_tt + prior))};
 }
 
+// Followed and turned by only with a prior, and from kMinChecks on.
+std::optional<HeadingRate::Fit> HeadingRate::followed_fit() const {
+  if (prior_sigma_ <= 0.0) return std::nullopt;
+  return fit(kMinChecks);
+}
+
 std::vector<double> HeadingRate::turns(const std::vector<double>& stamps,
                                        const std::vector<double>& corrections) const {
-  const std::optional<Fit> line = prior_sigma_ > 0.0 ? fit(kMinChecks) : std::nullopt;
+  const std::optional<Fit> line = followed_fit();
+  const std::size_t n = std::min(stamps.size(), corrections.size());
   if (!line || std::abs(line->rate) <= kTurnSignificance * line->sigma) {
-    return std::vector<double>(std::min(stamps.size(), corrections.size()), 0.0);
+    return std::vector<double>(n, 0.0);
   }
-  return turns_by(*line, stamps, corrections);
+  std::vector<double> turns;
+  for (std::size_t k = 0; k < n; ++k) {
+    turns.push_back(wrap_angle(line->rate * (stamps[k] - stamps.front()) -
+                               (corrections[k] - corrections.front())));
+  }
+  return turns;
 }
 
 HeadingRate::Estimate HeadingRate::estimate() const {
   const std::optional<Fit> line = fit(kMinChecksForLine);
   if (!line) return {0.0, prior_sigma_ * prior_sigma_};
   return {line->rate, line->sigma * line->sigma};
-}
-
-std::vector<double> HeadingRate::turns_by(const Fit& line, const std::vector<double>& stamps,
-                                          const std::vector<double>& corrections) {
-  const std::size_t n = std::min(stamps.size(), corrections.size());
-  std::vector<double> turns;
-  for (std::size_t k = 0; k < n; ++k) {
-    turns.push_back(wrap_angle(line.rate * (stamps[k] - stamps.front()) -
-                               (corrections[k] - corrections.front())));
-  }
-  return turns;
 }
 
 }  // namespace uavslam

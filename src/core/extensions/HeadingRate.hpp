@@ -57,10 +57,10 @@ class HeadingRate {
   // The line as it stands, for the map's covariance (MapUncertainty): its rate, however few
   // standard errors, and the variance of that rate's error (rad/s, rad^2/s^2), from the third
   // check on (without a prior too: then the line alone, which nobody follows); before, 0 and
-  // sigma_r^2. A keyframe made dt after the
-  // first with the correction H (since the first's) is off by r_true dt - H: the rate's error is
-  // one for all keyframes, so as the checks pin it down the whole map's heading is surer, the
-  // early keyframes' too, and the part of the drift the line knows of but nobody applied shows.
+  // sigma_r^2. A keyframe made dt after the first with the correction H (since the first's) is
+  // off by r_true dt - H: the rate's error is one for all keyframes, so as the checks pin it down
+  // the whole map's heading is surer, the early keyframes' too, and the part of the drift the
+  // line knows of but nobody applied shows.
   struct Estimate {
     double rate = 0.0;
     double variance = 0.0;
@@ -75,9 +75,8 @@ class HeadingRate {
   // The line through the checks (against the prior, if any); none before min_checks of them or
   // without a span.
   std::optional<Fit> fit(std::size_t min_checks) const;
-  // turn_k above with the line's rate.
-  static std::vector<double> turns_by(const Fit& line, const std::vector<double>& stamps,
-                                      const std::vector<double>& corrections);
+  // The line rate() and turns() act on.
+  std::optional<Fit> followed_fit() const;
 
   double prior_sigma_;
   // Over the checks: their count and the sums of dt, m, dt^2, dt m and m^2.
