@@ -88,8 +88,9 @@ void print_summary(std::ostream& out, const PassResult& run, const std::string& 
   const double pipeline = run.pipeline_seconds();
   const double factor = pipeline > 0.0 ? run.data_seconds / pipeline : 0.0;
   out << std::setprecision(2) << "  wall time         " << pipeline << " s for " << run.data_seconds
-      << " s of log (" << std::setprecision(1) << factor << "x real time); with reading the log "
-      << std::setprecision(2) << run.wall_seconds << " s\n";
+      << " s of log (" << std::setprecision(1) << factor
+      << "x real time); the whole pass (reading the log, the back end) " << std::setprecision(2)
+      << run.wall_seconds << " s\n";
 }
 
 void write_outputs(const std::filesystem::path& out, const PassResult& run,

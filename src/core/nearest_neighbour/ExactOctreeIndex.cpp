@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/nearest_neighbour/ParallelLoop.hpp"
+
 namespace uavslam {
 namespace {
 
@@ -140,9 +142,11 @@ void ExactOctreeIndex::find_nearest(const Points& queries, std::vector<Neighbour
   nearest.resize(queries.size());
   if (root_ == kNoChild) return;
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < queries.size(); ++i) {
-    nearest[i] = searched(queries[i], {0, kInfinity, 0, kInfinity});
-  }
+  ParallelLoop::shared().run(queries.size(), kChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      nearest[i] = searched(queries[i], {0, kInfinity, 0, kInfinity});
+    }
+  });
 }
 
 // A query that moved by delta since its last search is at least d2 - delta from every point but
@@ -153,35 +157,38 @@ void ExactOctreeIndex::find_nearest(const Points& queries, std::vector<Neighbour
 void ExactOctreeIndex::find_nearest_again(const Points& queries,
                                           std::vector<Neighbour>& nearest) const {
   if (root_ == kNoChild || nearest.empty()) return find_nearest(queries, nearest);
-  constexpr double kMargin = 1e-9;  // m, far above rounding, far below any map spacing
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
   const std::size_t warm = std::min(nearest.size(), queries.size());
   nearest.resize(queries.size());
-  for (std::size_t i = 0; i < queries.size(); ++i) {
-    Neighbour& n = nearest[i];
-    // No old neighbour for this query, or one from a map that has since been replaced.
-    if (i >= warm || n.index >= points_.size()) {
-      n = searched(queries[i], {0, kInfinity, 0, kInfinity});
-      continue;
-    }
-    const double d1 = (points_[n.index] - queries[i]).squaredNorm();
-    const double delta = (queries[i] - n.searched_from).norm();
-    if (n.searched_size == points_.size() && std::sqrt(d1) + delta + kMargin < n.second_distance) {
-      n.squared_distance = d1;
-      continue;
-    }
-    // The old two nearest are real points, so their distances bound the search and the answers
-    // stay exact; after a small move they are near the answers, so most of the tree is pruned.
-    TwoNearest start{std::uint32_t(n.index), d1, std::uint32_t(n.second_index), kInfinity};
-    if (n.second_index < points_.size() && n.second_index != n.index) {
-      start.second = (points_[n.second_index] - queries[i]).squaredNorm();
-      if (start.second < start.first) {
-        std::swap(start.index, start.second_index);
-        std::swap(start.first, start.second);
-      }
-    }
-    n = searched(queries[i], start);
+  ParallelLoop::shared().run(queries.size(), kChunk, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) nearest[i] = again(queries[i], i < warm, nearest[i]);
+  });
+}
+
+// One query of find_nearest_again; `warm`: `last` is what an earlier search gave it.
+Neighbour ExactOctreeIndex::again(const Vec3& query, bool warm, const Neighbour& last) const {
+  constexpr double kMargin = 1e-9;  // m, far above rounding, far below any map spacing
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  // No old neighbour for this query, or one from a map that has since been replaced.
+  if (!warm || last.index >= points_.size()) return searched(query, {0, kInfinity, 0, kInfinity});
+  const double d1 = (points_[last.index] - query).squaredNorm();
+  const double delta = (query - last.searched_from).norm();
+  if (last.searched_size == points_.size() &&
+      std::sqrt(d1) + delta + kMargin < last.second_distance) {
+    Neighbour same = last;
+    same.squared_distance = d1;
+    return same;
   }
+  // The old two nearest are real points, so their distances bound the search and the answers
+  // stay exact; after a small move they are near the answers, so most of the tree is pruned.
+  TwoNearest start{std::uint32_t(last.index), d1, std::uint32_t(last.second_index), kInfinity};
+  if (last.second_index < points_.size() && last.second_index != last.index) {
+    start.second = (points_[last.second_index] - query).squaredNorm();
+    if (start.second < start.first) {
+      std::swap(start.index, start.second_index);
+      std::swap(start.first, start.second);
+    }
+  }
+  return searched(query, start);
 }
 
 }  // namespace uavslam

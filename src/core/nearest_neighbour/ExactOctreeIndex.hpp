@@ -44,6 +44,9 @@ class ExactOctreeIndex final : public NearestNeighbourIndex {
   };
   void search(std::int32_t node_index, const Vec3& q, TwoNearest& best) const;
   Neighbour searched(const Vec3& q, TwoNearest best) const;
+  Neighbour again(const Vec3& query, bool warm, const Neighbour& last) const;
+  // Queries a thread claims at a time (ParallelLoop): a few microseconds' work.
+  static constexpr std::size_t kChunk = 16;
 
   std::size_t leaf_capacity_;
   Points points_;
