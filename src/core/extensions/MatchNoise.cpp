@@ -15,7 +15,7 @@ const Eigen::Matrix3d kVertical = Eigen::Vector3d(0.0, 0.0, 1.0).asDiagonal();
 void learn(double& log_scale, const PriorDistance& distance) {
   if (distance.directions == 0 || !std::isfinite(distance.sigmas)) return;
   const double ratio = distance.sigmas * distance.sigmas / distance.directions;
-  log_scale = std::max(0.0, log_scale + kRate * (std::min(ratio, kCap) - 1.0));
+  log_scale += kRate * (std::min(ratio, kCap) - 1.0);
 }
 
 }  // namespace

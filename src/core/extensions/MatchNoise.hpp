@@ -6,8 +6,10 @@
 // squared Mahalanobis distance d^2 (PriorAgreement) has the mean m, the directions observed
 // (chi-square). So s follows the innovations (adaptive estimation, Mehra 1970; a stochastic
 // approximation of E[d^2 / m] = 1):
-//   log s <- log s + rate (min(d^2 / m, cap) - 1),   s >= 1
-// (the cap: one wild match moves it no more than a few ordinary ones). The horizontal directions
+//   log s <- log s + rate (min(d^2 / m, cap) - 1)
+// (the cap: one wild match moves it no more than a few ordinary ones), either way: H^-1 sigma^2 can
+// be too cautious as well, where sigma^2 counts pairs the robust refinement set aside (a thin
+// wall's other face 0.3 m away), and s then learns to be below 1. The horizontal directions
 // (the level beams against the walls) and the vertical one (the floor beams) are two sensors with
 // their own noise, and each has its own s, learnt from its own part of the innovation. It learns
 // each building's noise as it flies; no figure is tuned to one.

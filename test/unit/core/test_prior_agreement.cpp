@@ -96,9 +96,10 @@ TEST(MatchNoise, LearnsHowMuchTooConfidentEachChannelIs) {
   const Eigen::Matrix3d predicted = Eigen::Matrix3d::Zero();
   MatchNoise noise;
   EXPECT_EQ(noise.horizontal_scale(), 1.0);
+  // Matches ten times better than they promise: the scales learn that too.
   for (int i = 0; i < 100; ++i) noise.add(Vec3(0.001, 0.001, 0.001), observed, promised, predicted);
-  EXPECT_EQ(noise.horizontal_scale(), 1.0);
-  EXPECT_EQ(noise.vertical_scale(), 1.0);
+  EXPECT_LT(noise.horizontal_scale(), 0.5);
+  EXPECT_LT(noise.vertical_scale(), 0.5);
 
   std::mt19937 random(7);
   std::normal_distribution<double> horizontal(0.0, 0.03);
@@ -108,7 +109,7 @@ TEST(MatchNoise, LearnsHowMuchTooConfidentEachChannelIs) {
     noise.add(correction, observed, promised, predicted);
   }
   EXPECT_NEAR(noise.horizontal_scale(), 9.0, 2.0);
-  EXPECT_LT(noise.vertical_scale(), 1.5);
+  EXPECT_NEAR(noise.vertical_scale(), 1.0, 0.4);
   const Eigen::Matrix3d scaled = noise.scaled(promised);
   EXPECT_NEAR(scaled(0, 0), noise.horizontal_scale() * 1e-4, 1e-12);
   EXPECT_NEAR(scaled(2, 2), noise.vertical_scale() * 1e-4, 1e-12);

@@ -367,8 +367,8 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
 }
 
 // The UAV's configuration is the seed's plus the motion model, the degeneracy analysis, the
-// seed's own suggestion of a periodic heading check, the gate on the motion prior and the back
-// end.
+// seed's own suggestion of a periodic heading check, the gate on the motion prior, the robust
+// refinement and the back end.
 TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingCheckGateAndLines) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
   EXPECT_EQ(config.icp.motion_prior, MotionPrior::Imu);
@@ -378,6 +378,8 @@ TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingC
   EXPECT_GT(config.icp.prior_gate, 0.0);
   EXPECT_TRUE(config.motion.fuse_velocity);
   EXPECT_TRUE(config.loop_closure.enabled);
+  EXPECT_GT(config.icp.robust_scale, 0.0);
+  config.icp.robust_scale = SlamConfig{}.icp.robust_scale;
   config.loop_closure.enabled = SlamConfig{}.loop_closure.enabled;
   config.icp.motion_prior = SlamConfig{}.icp.motion_prior;
   config.motion.fuse_velocity = SlamConfig{}.motion.fuse_velocity;
