@@ -152,15 +152,16 @@ TEST_F(UavslamCli, ThePlainCorridorsAxisIsFlaggedAndCarriedByTheImu) {
   // covers the error, NEES averaging within [0.5, 2] x the 3 dimensions over flights: four of
   // them, noise seeds 1 to 8 (1.48, 1.30, 1.33, 1.89, 2.28, 1.77, 1.10, 2.29: mean 1.68; one
   // flight's NEES varies from about 1 to 8 over 16 seeds, their mean 2.0: docs/algorithm.md).
+  constexpr int kSeeds = 8;
   double nees = 0.0;
-  for (int seed = 1; seed <= 8; ++seed) {
+  for (int seed = 1; seed <= kSeeds; ++seed) {
     const std::string name = "seed" + std::to_string(seed);
     nees +=
         simulate(dir / name, "plain_corridor", "config/slam.yaml", "--seed " + std::to_string(seed))
             .at("consistency")
             .at("nees_mean")
             .get<double>() /
-        8.0;
+        kSeeds;
   }
   EXPECT_GE(nees, 1.5);
   EXPECT_LE(nees, 6.0);
@@ -242,9 +243,10 @@ TEST_F(UavslamCli, TheShippedConfigCorrectsTheImusYawDrift) {
 // noise seeds 1 to 4, 0.107 against 0.131 m (8 seeds: 0.095 against 0.130 m, monte_carlo.sh).
 TEST_F(UavslamCli, TheHeadingChecksLearnTheImusDriftAndFollowIt) {
   const std::string no_loops = "--set loop_closure.enabled=false";
+  constexpr int kSeeds = 4;
   double followed_ate = 0.0;
   double unfollowed_ate = 0.0;
-  for (int seed = 1; seed <= 4; ++seed) {
+  for (int seed = 1; seed <= kSeeds; ++seed) {
     const std::string options = no_loops + " --seed " + std::to_string(seed);
     const nlohmann::json followed =
         simulate(dir / ("uav" + std::to_string(seed)), "yaw_drift", "config/slam.yaml", options);
@@ -253,8 +255,8 @@ TEST_F(UavslamCli, TheHeadingChecksLearnTheImusDriftAndFollowIt) {
                  options + " --set imu.heading_drift_sigma=0");
     EXPECT_NEAR(followed.at("heading_drift_deg_per_min").get<double>(), 2.0, 0.2) << seed;
     EXPECT_EQ(unfollowed.at("heading_drift_deg_per_min").get<double>(), 0.0) << seed;
-    followed_ate += ate_horizontal(followed) / 4.0;
-    unfollowed_ate += ate_horizontal(unfollowed) / 4.0;
+    followed_ate += ate_horizontal(followed) / kSeeds;
+    unfollowed_ate += ate_horizontal(unfollowed) / kSeeds;
   }
   EXPECT_LT(followed_ate, 0.9 * unfollowed_ate);
   // A steady IMU (demo.yaml): nothing to learn, nothing followed.

@@ -141,12 +141,14 @@ Neighbour ExactOctreeIndex::searched(const Vec3& q, TwoNearest best) const {
 void ExactOctreeIndex::find_nearest(const Points& queries, std::vector<Neighbour>& nearest) const {
   nearest.resize(queries.size());
   if (root_ == kNoChild) return;
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
   ParallelLoop::shared().run(queries.size(), kChunk, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      nearest[i] = searched(queries[i], {0, kInfinity, 0, kInfinity});
-    }
+    for (std::size_t i = begin; i < end; ++i) nearest[i] = searched_afresh(queries[i]);
   });
+}
+
+Neighbour ExactOctreeIndex::searched_afresh(const Vec3& q) const {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  return searched(q, {0, kInfinity, 0, kInfinity});
 }
 
 // A query that moved by delta since its last search is at least d2 - delta from every point but
@@ -169,7 +171,7 @@ Neighbour ExactOctreeIndex::again(const Vec3& query, bool warm, const Neighbour&
   constexpr double kMargin = 1e-9;  // m, far above rounding, far below any map spacing
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   // No old neighbour for this query, or one from a map that has since been replaced.
-  if (!warm || last.index >= points_.size()) return searched(query, {0, kInfinity, 0, kInfinity});
+  if (!warm || last.index >= points_.size()) return searched_afresh(query);
   const double d1 = (points_[last.index] - query).squaredNorm();
   const double delta = (query - last.searched_from).norm();
   if (last.searched_size == points_.size() &&

@@ -44,6 +44,7 @@ class ExactOctreeIndex final : public NearestNeighbourIndex {
   };
   void search(std::int32_t node_index, const Vec3& q, TwoNearest& best) const;
   Neighbour searched(const Vec3& q, TwoNearest best) const;
+  Neighbour searched_afresh(const Vec3& q) const;  // no earlier answer to start from
   Neighbour again(const Vec3& query, bool warm, const Neighbour& last) const;
   // Queries a thread claims at a time (ParallelLoop): a few microseconds' work.
   static constexpr std::size_t kChunk = 16;
