@@ -36,7 +36,7 @@ void write_trace(const std::string& path, const std::vector<ScanTrace>& trace) {
   std::ofstream csv(path);
   csv << "stamp,outcome,points,error_before,error_after,iterations,keyframe,x,y,z,true_x,true_y,"
          "true_z,ms,degenerate,weakest_fraction,sigma_x,sigma_y,sigma_z,prior_distance,tracking,"
-         "tracking_reason,nees\n";
+         "tracking_reason,floor_returns,nees\n";
   for (const ScanTrace& t : trace) {
     csv << std::fixed << std::setprecision(4) << t.stamp << ',' << to_string(t.outcome) << ','
         << t.points_used << ',' << std::setprecision(6) << t.error_before << ',' << t.error_after
@@ -45,7 +45,7 @@ void write_trace(const std::string& path, const std::vector<ScanTrace>& trace) {
         << ',' << t.truth.y() << ',' << t.truth.z() << ',' << t.milliseconds << ',' << t.degenerate
         << ',' << t.weakest_fraction << ',' << t.sigma.x() << ',' << t.sigma.y() << ','
         << t.sigma.z() << ',' << t.prior_distance << ',' << to_string(t.tracking.state) << ','
-        << to_string(t.tracking.reason) << ',';
+        << to_string(t.tracking.reason) << ',' << t.floor_returns << ',';
     if (t.nees) csv << t.nees->value;
     csv << '\n';
   }

@@ -54,6 +54,7 @@ struct ScanTrace {
   Vec3 sigma = Vec3::Zero();      // m; the reported position's standard deviation per axis
   double prior_distance = 0.0;    // sigmas between the match and the motion prior's prediction
   TrackingStatus tracking;
+  std::size_t floor_returns = 0;   // level beams' points set aside as floor strikes
   std::optional<eval::Nees> nees;  // of the reported position against the truth
 };
 

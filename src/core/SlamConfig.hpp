@@ -77,6 +77,10 @@ struct SlamConfig {
   // Step 1-2: which points of a scan take part.
   struct Scan {
     int subsample_every = 5;  // keep every k-th valid point (seed: 216 of 1080)
+    // Beyond the seed: m; a level beam's point less than this above the floor's level, as the
+    // floor beams measure it, struck the floor from a tilted scanner and is set aside
+    // (extensions/FloorReturns). 0: every point kept, as the seed.
+    double floor_margin = 0.0;
   } scan;
 
   // Step 3-5: the translation-only ICP (Figure 5.15).

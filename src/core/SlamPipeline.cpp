@@ -6,6 +6,7 @@
 
 #include "core/Angles.hpp"
 #include "core/Heading.hpp"
+#include "core/extensions/FloorReturns.hpp"
 #include "core/extensions/PriorAgreement.hpp"
 #include "core/extensions/Relocalisation.hpp"
 #include "core/extensions/ScanInformation.hpp"
@@ -56,8 +57,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   follow_heading_drift(scan.stamp);
   drift_check_.reset();
   Eigen::Quaterniond orientation = corrected(*source_orientation);
-  ProjectedScan projected = project_scan(scan, orientation);
-  report.invalid_ranges = projected.invalid;
+  ProjectedScan projected = project(scan, orientation, report);
   // Step 2: every k-th point.
   const ScanPoints points = scan_points(projected);
   report.points_used = points.points.size();
@@ -130,7 +130,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   if (match.yaw != 0.0) {
     heading_correction_ = wrap_angle(heading_correction_ + match.yaw);
     orientation = corrected(*source_orientation);
-    projected = project_scan(scan, orientation);
+    projected = project(scan, orientation, report);
   }
 
   // Steps 6-7: report the new pose; a keyframe after enough motion.
@@ -195,6 +195,17 @@ MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted)
   }
   ++scans_since_heading_check_;
   return matcher_.match(map_, points, start, false, &nearest_);
+}
+
+// Step 1's points; beyond the seed, without the floor strikes of a tilted scanner's level beams.
+ProjectedScan SlamPipeline::project(const Scan& scan, const Eigen::Quaterniond& orientation,
+                                    ScanReport& report) const {
+  ProjectedScan projected = project_scan(scan, orientation);
+  report.invalid_ranges = projected.invalid;
+  if (config_.scan.floor_margin > 0.0) {
+    report.floor_returns = set_aside_floor_returns(projected, config_.scan.floor_margin);
+  }
+  return projected;
 }
 
 // Steps 1-2's points, thinned to every k-th, with each point's wall normal when the degeneracy

@@ -29,8 +29,9 @@ struct ScanReport {
   Pose pose;                    // the vehicle's pose after this scan (unchanged if rejected)
   std::size_t points_used = 0;  // after subsampling
   std::size_t invalid_ranges = 0;
-  double error_before = 0.0;  // m^2, eq. 5.18
-  double error_after = 0.0;   // m^2
+  std::size_t floor_returns = 0;  // level beams' points set aside as floor strikes (FloorReturns)
+  double error_before = 0.0;      // m^2, eq. 5.18
+  double error_after = 0.0;       // m^2
   int iterations = 0;
   bool map_updated = false;  // this scan was a keyframe
   // The match failed and the pose is the predicted one (the last pose moved by the motion prior):
@@ -130,6 +131,8 @@ class SlamPipeline {
   bool stale(double stamp) const;
   bool moved_enough_for_map_update(const Pose& pose) const;
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
+  ProjectedScan project(const Scan& scan, const Eigen::Quaterniond& orientation,
+                        ScanReport& report) const;
   ScanPoints scan_points(const ProjectedScan& projected) const;
   MapError map_part(const ScanReport& report, const MatchResult& match) const;
   Eigen::Matrix4d keyframe_covariance(const ScanReport& report) const;

@@ -37,6 +37,10 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.scan.subsample_every = v.as_int(NumberRange::at_least(1));
        }},
+      {"scan", "floor_margin",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.scan.floor_margin = v.as_double(NumberRange::non_negative());
+       }},
       {"icp", "iterations",
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.iterations = v.as_int(NumberRange::at_least(1));

@@ -305,6 +305,7 @@ TEST_F(YamlFileTest, ConfigErrorIsARuntimeError) {
 void expect_default_slam_config(const SlamConfig& config) {
   const SlamConfig defaults;
   EXPECT_EQ(config.scan.subsample_every, defaults.scan.subsample_every);
+  EXPECT_EQ(config.scan.floor_margin, defaults.scan.floor_margin);
   EXPECT_EQ(config.icp.iterations, defaults.icp.iterations);
   EXPECT_EQ(config.icp.max_translation, defaults.icp.max_translation);
   EXPECT_EQ(config.icp.motion_prior, defaults.icp.motion_prior);
@@ -368,7 +369,7 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
 
 // The UAV's configuration is the seed's plus the motion model, the degeneracy analysis, the
 // seed's own suggestion of a periodic heading check, the gate on the motion prior, the robust
-// refinement and the back end.
+// refinement, the floor strikes set aside and the back end.
 TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingCheckGateAndLines) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
   EXPECT_EQ(config.icp.motion_prior, MotionPrior::Imu);
@@ -379,7 +380,9 @@ TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingC
   EXPECT_TRUE(config.motion.fuse_velocity);
   EXPECT_TRUE(config.loop_closure.enabled);
   EXPECT_GT(config.icp.robust_scale, 0.0);
+  EXPECT_GT(config.scan.floor_margin, 0.0);
   config.icp.robust_scale = SlamConfig{}.icp.robust_scale;
+  config.scan.floor_margin = SlamConfig{}.scan.floor_margin;
   config.loop_closure.enabled = SlamConfig{}.loop_closure.enabled;
   config.icp.motion_prior = SlamConfig{}.icp.motion_prior;
   config.motion.fuse_velocity = SlamConfig{}.motion.fuse_velocity;
@@ -396,7 +399,7 @@ TEST_F(YamlFileTest, EmptySlamConfigHoldsTheDefaults) {
 
 TEST_F(YamlFileTest, SlamConfigReadsEveryKey) {
   const std::string path = write("slam.yaml", R"(
-scan: {subsample_every: 1}
+scan: {subsample_every: 1, floor_margin: 0.15}
 icp:
   iterations: 20
   max_translation: 0.5
@@ -474,6 +477,7 @@ loop_closure:
   EXPECT_EQ(c.loop_closure.min_score_margin, 0.1);
   EXPECT_EQ(c.loop_closure.ambiguity_radius, 0.7);
   EXPECT_EQ(c.scan.subsample_every, 1);
+  EXPECT_EQ(c.scan.floor_margin, 0.15);
   EXPECT_EQ(c.icp.iterations, 20);
   EXPECT_EQ(c.icp.max_translation, 0.5);
   EXPECT_EQ(c.icp.max_error_after, 0.1);
