@@ -58,12 +58,14 @@ void print_subset(std::ostream& out, const std::string& name, const eval::Relati
       << " of " << e.relations << " relations, " << e.unmatched << " unmatched\n";
 }
 
-// Each relation's errors, a line each ("t1,t2,span_s,translation_m,rotation_deg"; the last two
-// empty for an unmatched relation), to find where an estimate goes wrong.
+// Each relation's errors, a line each ("t1,t2,span_s,translation_m,rotation_deg,relation_m,
+// along_m,across_m"; the errors empty for an unmatched relation, along and across also for one
+// under 1 cm), to find where an estimate goes wrong.
 void write_per_relation(const std::string& path, const eval::RelationErrors& errors) {
   std::ofstream out(path);
   if (!out) throw io::file_error(path, "cannot be written");
-  out << "t1,t2,span_s,translation_m,rotation_deg\n" << std::setprecision(10);
+  out << "t1,t2,span_s,translation_m,rotation_deg,relation_m,along_m,across_m\n"
+      << std::setprecision(10);
   for (const eval::RelationError& e : errors.each) {
     // Stamps to the logs' microsecond, whatever their epoch (Intel's are 976 052 905.167303 s).
     out << std::fixed << std::setprecision(6) << e.t1 << ',' << e.t2 << ',' << e.t2 - e.t1 << ','
@@ -71,6 +73,10 @@ void write_per_relation(const std::string& path, const eval::RelationErrors& err
     if (e.translation) out << *e.translation;
     out << ',';
     if (e.rotation) out << *e.rotation * kDegreesPerRadian;
+    out << ',' << e.length << ',';
+    if (e.along) out << *e.along;
+    out << ',';
+    if (e.across) out << *e.across;
     out << '\n';
   }
   if (!out) throw io::file_error(path, "could not be written whole");
@@ -262,8 +268,9 @@ void add_eval_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", options->json, "print JSON instead of text");
   cmd->add_option("--per-relation", options->per_relation,
                   "with --relations and --estimate or --scans: write each relation's errors to "
-                  "this CSV file (t1,t2,span_s,translation_m,rotation_deg; the last two empty "
-                  "where unmatched)");
+                  "this CSV file (t1,t2,span_s,translation_m,rotation_deg,relation_m,along_m,"
+                  "across_m: the translation error also split along and across the relation's "
+                  "direction; the errors empty where unmatched)");
   cmd->add_flag("--consistency", options->consistency,
                 "with --relations and no --estimate: how well the relations agree with each "
                 "other (their triangles' closure: no estimate agrees with all three relations "

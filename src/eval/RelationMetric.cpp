@@ -141,6 +141,7 @@ RelationErrors compare_relation_estimates(const std::vector<Relation>& relations
     RelationError& each = errors.each.emplace_back();
     each.t1 = relation.t1;
     each.t2 = relation.t2;
+    each.length = std::hypot(relation.x, relation.y);
     if (i >= estimated.size() || !estimated[i]) {
       ++all.unmatched;
       if (is_short) ++short_span.unmatched;
@@ -153,6 +154,12 @@ RelationErrors compare_relation_estimates(const std::vector<Relation>& relations
     const double rotation = std::abs(error.theta);
     each.translation = translation;
     each.rotation = rotation;
+    if (each.length >= kMinDirectedLength) {
+      const double ux = relation.x / each.length;
+      const double uy = relation.y / each.length;
+      each.along = (e.x - relation.x) * ux + (e.y - relation.y) * uy;
+      each.across = -(e.x - relation.x) * uy + (e.y - relation.y) * ux;
+    }
     all.translation.push_back(translation);
     all.rotation.push_back(rotation);
     if (is_short) {

@@ -30,9 +30,16 @@ struct RelationSubsetErrors {
 // One relation's errors; none when t1 or t2 has no estimated pose.
 struct RelationError {
   double t1 = 0.0, t2 = 0.0;          // s, the relation's scans
+  double length = 0.0;                // m, the relation's own translation
   std::optional<double> translation;  // m
   std::optional<double> rotation;     // rad
+  // m: the estimated motion's translation less the relation's, both in t1's frame, along the
+  // relation's direction (positive: the estimate moved farther) and across it (positive: to its
+  // left). None for a relation under kMinDirectedLength, whose direction is noise.
+  std::optional<double> along;
+  std::optional<double> across;
 };
+inline constexpr double kMinDirectedLength = 0.01;  // m
 
 struct RelationErrors {
   RelationSubsetErrors all;

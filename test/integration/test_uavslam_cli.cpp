@@ -504,9 +504,11 @@ TEST_F(UavslamCli, EvalScoresAPlanarEstimateAgainstRelations) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(each, line);) lines.push_back(line);
   ASSERT_EQ(lines.size(), 3u);
-  EXPECT_EQ(lines[0], "t1,t2,span_s,translation_m,rotation_deg");
-  EXPECT_EQ(lines[1], "100.500000,101.500000,1.000000,0,0");
+  EXPECT_EQ(lines[0], "t1,t2,span_s,translation_m,rotation_deg,relation_m,along_m,across_m");
+  EXPECT_EQ(lines[1], "100.500000,101.500000,1.000000,0,0,1,0,0");
   EXPECT_THAT(lines[2], ::testing::StartsWith("100.500000,200.250000,99.750000,1,5.72957795"));
+  // 4 m estimated where the relation says 3: 1 m too far along it, nothing across.
+  EXPECT_THAT(lines[2], ::testing::EndsWith(",3,1,0"));
   const CommandResult per_without = run("eval --estimate " + estimate + " --groundtruth " +
                                         estimate + " --per-relation " + listing);
   EXPECT_EQ(per_without.exit_code, 2) << per_without.output;

@@ -168,6 +168,28 @@ TEST(RelationMetric, MotionsEstimatedRelationByRelationScoreTheSameWay) {
   EXPECT_NEAR(e.short_span.translation.mean, 0.1, 1e-12);
 }
 
+// The translation error split along and across the relation's own direction: an estimate that
+// moved 0.9 m where the relation says 1 m, and 0.1 m to its left, is 0.1 m short and 0.1 m left,
+// whichever way the relation points; a relation under 1 cm has no direction to split along.
+TEST(RelationMetric, TheErrorIsSplitAlongAndAcrossTheRelation) {
+  const std::vector<Relation> relations = {
+      {0.0, 1.0, 1.0, 0.0, 0.0}, {1.0, 2.0, 0.0, -2.0, 0.5}, {2.0, 3.0, 0.005, 0.0, 1.0}};
+  const std::vector<std::optional<Relation>> estimated = {Relation{0.0, 1.0, 0.9, 0.1, 0.0},
+                                                          Relation{1.0, 2.0, 0.1, -1.9, 0.5},
+                                                          Relation{2.0, 3.0, 0.0, 0.0, 1.0}};
+  const RelationErrors e = uavslam::eval::compare_relation_estimates(relations, estimated);
+  ASSERT_TRUE(e.each[0].along && e.each[0].across);
+  EXPECT_NEAR(*e.each[0].along, -0.1, 1e-12);
+  EXPECT_NEAR(*e.each[0].across, 0.1, 1e-12);
+  EXPECT_NEAR(e.each[0].length, 1.0, 1e-12);
+  ASSERT_TRUE(e.each[1].along && e.each[1].across);
+  EXPECT_NEAR(*e.each[1].along, -0.1, 1e-12);
+  EXPECT_NEAR(*e.each[1].across, 0.1, 1e-12);
+  EXPECT_TRUE(e.each[2].translation);
+  EXPECT_FALSE(e.each[2].along);
+  EXPECT_FALSE(e.each[2].across);
+}
+
 using RelationFiles = uavslam::test::TempDirTest;
 
 TEST_F(RelationFiles, StampsPrintedTheSameWayMatchExactly) {
