@@ -660,7 +660,8 @@ TEST_F(UavslamCli, EvalScansScoresTheRelationsAgainstTheScansOwnAlignment) {
   for (std::string line; std::getline(listed, line);) lines.push_back(line);
   ASSERT_EQ(lines.size(), 4u);
   EXPECT_THAT(lines[1], ::testing::StartsWith("100.000000,100.100000,0.100000,"));
-  EXPECT_EQ(lines[3], "100.000000,107.000000,7.000000,,") << "the unmatched relation";
+  // The unmatched relation: its length (1 m), no errors.
+  EXPECT_EQ(lines[3], "100.000000,107.000000,7.000000,,,1,,") << "the unmatched relation";
   const CommandResult with_estimate =
       run("eval --relations " + relations_path + " --scans " + path + " --estimate " + path);
   EXPECT_EQ(with_estimate.exit_code, 2) << with_estimate.output;
