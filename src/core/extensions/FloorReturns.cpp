@@ -1,6 +1,7 @@
 #include "core/extensions/FloorReturns.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <vector>
 
 namespace uavslam {
