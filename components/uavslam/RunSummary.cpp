@@ -120,11 +120,32 @@ nlohmann::json to_json(const backend::LoopCounts& loops, double seconds) {
           {"optimisations", loops.optimisations}};
 }
 
+namespace {
+// A tilted scanner's level beams set aside on the floor (scan.floor_margin), over the flight.
+struct FloorStrikes {
+  std::size_t points = 0;
+  std::size_t scans = 0;
+};
+
+FloorStrikes floor_strikes(const SlamRun& run) {
+  FloorStrikes strikes;
+  for (const ScanTrace& t : run.trace) {
+    strikes.points += t.floor_returns;
+    strikes.scans += t.floor_returns > 0;
+  }
+  return strikes;
+}
+}  // namespace
+
 void print_summary(std::ostream& out, const RunSummary& s) {
   const SlamRun& run = *s.run;
   out << "uavslam simulate: " << s.scenario << (run.stopped_early ? " (stopped early)" : "")
       << "\n";
   print_scan_counts(out, run.scans_in, run.outcomes);
+  if (const FloorStrikes strikes = floor_strikes(run); strikes.points > 0) {
+    out << "  floor strikes     " << strikes.points << " points set aside in " << strikes.scans
+        << " scans (level beams of the tilted scanner on the floor)\n";
+  }
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
   print_tracking(out, run.tracking);
@@ -187,10 +208,12 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
   nlohmann::json j;
   j["scenario"] = s.scenario;
   j["stopped_early"] = run.stopped_early;
+  const FloorStrikes strikes = floor_strikes(run);
   j["scans"] = {{"in", run.scans_in},
                 {"accepted", s.accepted()},
                 {"rejected", run.scans_in - s.accepted()},
-                {"rejected_by_reason", rejected}};
+                {"rejected_by_reason", rejected},
+                {"floor_strikes", {{"points", strikes.points}, {"scans", strikes.scans}}}};
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
   j["tracking"] = to_json(run.tracking);
   if (!run.nees.empty()) {

@@ -241,6 +241,7 @@ TEST_F(UavslamCli, AFastFlightsFloorStrikesAreSetAside) {
       striking += std::stoul(fields[22]) > 0;
     }
     EXPECT_GT(striking, 200u) << seed;
+    EXPECT_EQ(set_aside.at("scans").at("floor_strikes").at("scans").get<std::size_t>(), striking);
   }
   EXPECT_LE(set_aside_ate, 0.06);
   EXPECT_GT(kept_ate, 0.2);
