@@ -48,6 +48,14 @@ ScanInformation scan_information(const Correspondences& pairs, const Vec3& body,
   Eigen::Matrix2d translation = H.topLeftCorner<2, 2>();
   if (with_yaw && H(2, 2) > 0.0) {
     translation -= H.topRightCorner<2, 1>() * H.bottomLeftCorner<1, 2>() / H(2, 2);
+    // The yaw's information with the translation estimated beside it (the other Schur
+    // complement): H_yy - H_yt H_tt^-1 H_ty.
+    const Eigen::Matrix2d Htt = H.topLeftCorner<2, 2>();
+    if (std::abs(Htt.determinant()) > 0.0) {
+      const double yaw_information =
+          H(2, 2) - (H.bottomLeftCorner<1, 2>() * Htt.inverse() * H.topRightCorner<2, 1>())(0, 0);
+      if (yaw_information > 0.0) info.yaw_variance = variance / yaw_information;
+    }
   }
   info.translation.topLeftCorner<2, 2>() = translation / variance;
   info.translation(2, 2) = vertical / variance;
@@ -67,6 +75,7 @@ Eigen::Matrix3d pair_information(const Correspondences& pairs, std::size_t i) {
 Observability observability(const ScanInformation& information, double threshold,
                             bool measures_height) {
   Observability result;
+  result.yaw_variance = information.yaw_variance;
   const double variance = information.sigma * information.sigma;
   const double pairs = double(information.horizontal_pairs);
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(

@@ -26,6 +26,8 @@ struct ScanInformation {
   std::size_t horizontal_pairs = 0;                       // pairs with a wall normal
   std::size_t vertical_pairs = 0;                         // pairs on the floor or ceiling
   double sigma = 0.0;                                     // m
+  // rad^2: the yaw's variance with the translation estimated beside it (with_yaw; else 0)
+  double yaw_variance = 0.0;
 };
 
 // Uses pairs.scan_normals (the scan's own normals, ScanPoints::normals); none: no information.
@@ -44,6 +46,7 @@ struct Observability {
   int degenerate = 0;                                    // directions the scan leaves free
   Vec3 weakest = Vec3::UnitX();   // the horizontal direction the scan sees least
   double weakest_fraction = 0.0;  // its information fraction (see above)
+  double yaw_variance = 0.0;      // rad^2, ScanInformation's
 };
 
 // An orthonormal basis (columns) of the directions a projection like Observability::observed keeps

@@ -90,6 +90,27 @@ TEST(ScanInformation, AnOpenRoomFixesEverythingAndItsCovarianceIsSigmaSquaredOve
   EXPECT_NEAR(o.covariance(2, 2), 1e-4 / 20.0, 1e-12);  // the floor's 20 pairs
 }
 
+// The yaw's variance, when the yaw is estimated beside the translation: sigma^2 over the yaw's
+// information, in a room symmetric about the body the lever arms' sum of squares (nothing couples
+// it to the translation there). Without the yaw estimated, none.
+TEST(ScanInformation, TheYawsVarianceIsSigmaSquaredOverItsInformation) {
+  Correspondences pairs;
+  add_wall(pairs, Vec3(-4, -3, 0), Vec3::UnitX(), 8.0);
+  add_wall(pairs, Vec3(-4, 3, 0), Vec3::UnitX(), 8.0);
+  add_wall(pairs, Vec3(-4, -3, 0), Vec3::UnitY(), 6.0);
+  add_wall(pairs, Vec3(4, -3, 0), Vec3::UnitY(), 6.0);
+  double lever_arms = 0.0;
+  for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
+    const Vec3& n = pairs.scan_normals[i];
+    const Vec3& q = pairs.scan[i];
+    lever_arms += std::pow(-n.x() * q.y() + n.y() * q.x(), 2);
+  }
+  const ScanInformation info = scan_information(pairs, Vec3::Zero(), true, kMinSigma);
+  EXPECT_NEAR(info.yaw_variance, 1e-4 / lever_arms, 1e-12);
+  EXPECT_EQ(observability(info, kThreshold, false).yaw_variance, info.yaw_variance);
+  EXPECT_EQ(scan_information(pairs, Vec3::Zero(), false, kMinSigma).yaw_variance, 0.0);
+}
+
 TEST(ScanInformation, HeightIsDegenerateOnlyForAScannerThatMeasuresIt) {
   Correspondences pairs;
   add_wall(pairs, Vec3(-4, 3, 0), Vec3::UnitX(), 8.0);
