@@ -97,6 +97,15 @@ std::optional<RealLogRun> run_real_log(const std::string& log, const fs::path& o
   return RealLogRun{r.output, nlohmann::json::parse(json), nlohmann::json::parse(e.output)};
 }
 
+// One line of simulate's scans.csv, split at its commas (a trailing empty field, nees without a
+// covariance, is dropped).
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream row(line);
+  for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+  return fields;
+}
+
 double ate_horizontal(const nlohmann::json& summary) {
   return summary.at("trajectory_errors").at("ate_horizontal_rmse_m").get<double>();
 }
@@ -172,9 +181,7 @@ TEST_F(UavslamCli, ThePlainCorridorsAxisIsFlaggedAndCarriedByTheImu) {
   std::size_t airborne = 0;
   std::size_t flagged = 0;
   while (std::getline(csv, line)) {
-    std::vector<std::string> fields;
-    std::stringstream row(line);
-    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+    const std::vector<std::string> fields = fields_of(line);
     ASSERT_GE(fields.size(), 22u) << line;  // the last, nees, is empty without a covariance
     if (fields[1] != "accepted" || std::stod(fields[12]) < 1.0) continue;
     ++airborne;
@@ -234,9 +241,7 @@ TEST_F(UavslamCli, AFastFlightsFloorStrikesAreSetAside) {
     ASSERT_NE(line.find(",floor_returns,"), std::string::npos) << line;
     std::size_t striking = 0;
     while (std::getline(csv, line)) {
-      std::vector<std::string> fields;
-      std::stringstream row(line);
-      for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+      const std::vector<std::string> fields = fields_of(line);
       ASSERT_GE(fields.size(), 23u) << line;
       striking += std::stoul(fields[22]) > 0;
     }

@@ -23,6 +23,14 @@ void add_wall(Correspondences& pairs, const Vec3& from, const Vec3& direction, d
   }
 }
 
+// An 8 x 6 m room's four walls about the origin.
+void add_room(Correspondences& pairs) {
+  add_wall(pairs, Vec3(-4, -3, 0), Vec3::UnitX(), 8.0);
+  add_wall(pairs, Vec3(-4, 3, 0), Vec3::UnitX(), 8.0);
+  add_wall(pairs, Vec3(-4, -3, 0), Vec3::UnitY(), 6.0);
+  add_wall(pairs, Vec3(4, -3, 0), Vec3::UnitY(), 6.0);
+}
+
 void add_floor(Correspondences& pairs, int count) {
   for (int i = 0; i < count; ++i) {
     pairs.scan.emplace_back(0.1 * i, 0.0, -1.5);
@@ -75,10 +83,7 @@ TEST(ScanInformation, ACornerFixesBothDirections) {
 
 TEST(ScanInformation, AnOpenRoomFixesEverythingAndItsCovarianceIsSigmaSquaredOverTheInformation) {
   Correspondences pairs;
-  add_wall(pairs, Vec3(-4, -3, 0), Vec3::UnitX(), 8.0);
-  add_wall(pairs, Vec3(-4, 3, 0), Vec3::UnitX(), 8.0);
-  add_wall(pairs, Vec3(-4, -3, 0), Vec3::UnitY(), 6.0);
-  add_wall(pairs, Vec3(4, -3, 0), Vec3::UnitY(), 6.0);
+  add_room(pairs);
   add_floor(pairs, 20);
   const ScanInformation info = scan_information(pairs, Vec3::Zero(), false, kMinSigma);
   EXPECT_NEAR(info.sigma, 0.01, 1e-9);  // every pair 1 cm off along its normal
@@ -95,10 +100,7 @@ TEST(ScanInformation, AnOpenRoomFixesEverythingAndItsCovarianceIsSigmaSquaredOve
 // it to the translation there). Without the yaw estimated, none.
 TEST(ScanInformation, TheYawsVarianceIsSigmaSquaredOverItsInformation) {
   Correspondences pairs;
-  add_wall(pairs, Vec3(-4, -3, 0), Vec3::UnitX(), 8.0);
-  add_wall(pairs, Vec3(-4, 3, 0), Vec3::UnitX(), 8.0);
-  add_wall(pairs, Vec3(-4, -3, 0), Vec3::UnitY(), 6.0);
-  add_wall(pairs, Vec3(4, -3, 0), Vec3::UnitY(), 6.0);
+  add_room(pairs);
   double lever_arms = 0.0;
   for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
     const Vec3& n = pairs.scan_normals[i];
