@@ -3,6 +3,7 @@
 // wheel odometry's theta all meet here.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/Types.hpp"
@@ -18,6 +19,11 @@ inline Eigen::Quaterniond yaw_rotation(double yaw) {
 inline double heading_of(const Eigen::Quaterniond& orientation) {
   const Vec3 forward = orientation * Vec3::UnitX();
   return std::atan2(forward.y(), forward.x());
+}
+
+// How far the body's vertical axis leans from the world's, rad in [0, pi].
+inline double tilt_of(const Eigen::Quaterniond& orientation) {
+  return std::acos(std::clamp((orientation * Vec3::UnitZ()).z(), -1.0, 1.0));
 }
 
 }  // namespace uavslam

@@ -103,6 +103,14 @@ struct SlamConfig {
     HeadingMode heading = HeadingMode::Source;
     int heading_check_every = 10;           // scans between periodic checks
     double heading_check_tolerance = 0.01;  // rad; a smaller disagreement leaves the heading alone
+    // s; > 0 with EveryScan: the map's heading, first set by one sample of the source's, is turned
+    // once, this long after the first scan, onto the source's heading averaged over every scan
+    // matched meanwhile (0: the first sample's, as before).
+    double heading_anchor = 0.0;
+    // rad; > 0 with EveryScan: a scan from a scanner tilted further from level matches the
+    // translation only, the heading staying the source's with the correction so far (0: no
+    // limit).
+    double heading_max_tilt = 0.0;
     double max_rotation = 0.35;  // rad; a larger yaw correction in one scan discards the scan
     // The distance the ICP minimises; point-to-line has no bias from the map's point spacing.
     IcpMetric metric = IcpMetric::PointToPoint;

@@ -35,7 +35,9 @@ SlamPipeline::SlamPipeline(const SlamConfig& config, const Vec3& initial_positio
       map_(make_nearest_neighbour_index(config.nearest_neighbour), config.map.min_point_spacing),
       matcher_(config.icp),
       gate_(config.icp.prior_gate, config.icp.prior_gate_overrule),
-      heading_rate_(config.imu.heading_drift_sigma) {
+      heading_rate_(config.imu.heading_drift_sigma),
+      heading_anchor_(config.icp.heading == HeadingMode::EveryScan ? config.icp.heading_anchor
+                                                                   : 0.0) {
   pose_.position = initial_position;
 }
 
@@ -72,6 +74,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     report.outcome = ScanOutcome::MapInitialised;
     report.pose = pose_;
     add_to_map(report, projected);
+    anchor_heading(report);
     return finish(report);
   }
 
@@ -140,7 +143,24 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   report.map_covariance = map_total().topLeftCorner<3, 3>();
   report.pose = pose_;
   if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
+  anchor_heading(report);
   return finish(report);
+}
+
+// Beyond the seed (extensions/HeadingAnchor): once the first scans have measured how far the
+// map's heading is from the source's, the map, its keyframes and the pose turn onto it about the
+// take-off point, and the heading correction with them.
+void SlamPipeline::anchor_heading(ScanReport& report) {
+  const std::optional<double> yaw = heading_anchor_.add(report.pose.stamp, heading_correction_);
+  if (!yaw || *yaw == 0.0) return;
+  const FrameTurn turn{map_uncertainty_.positions().front(), *yaw};
+  const Eigen::Isometry3d moved = turn.transform();
+  rebuild_map(moved_keyframes(moved));
+  for (double& heading : keyframe_headings_) heading = wrap_angle(heading + *yaw);
+  move_with_map(moved, *yaw);
+  for (Vec3& p : report.added_points) p = moved * p;
+  report.pose = pose_;
+  report.frame_turn = turn;
 }
 
 // A rejected scan: with a motion prior, the vehicle went where the prior says (the start), with
@@ -178,8 +198,9 @@ std::optional<PriorDistance> SlamPipeline::distance_from_prior(const ScanReport&
 MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted) {
   const HeadingMode heading = config_.icp.heading;
   const Vec3& start = predicted.position;
-  if (heading == HeadingMode::EveryScan)
-    return matcher_.match(map_, points, start, true, &nearest_);
+  if (heading == HeadingMode::EveryScan) {
+    return matcher_.match(map_, points, start, heading_seen(predicted.orientation), &nearest_);
+  }
   if (heading == HeadingMode::PeriodicCheck && heading_check_due(predicted)) {
     scans_since_heading_check_ = 0;
     MatchResult checked = matcher_.match(map_, points, start, true, &nearest_);
@@ -195,6 +216,16 @@ MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted)
   }
   ++scans_since_heading_check_;
   return matcher_.match(map_, points, start, false, &nearest_);
+}
+
+// A scanner tilted beyond icp.heading_max_tilt cuts the room at another slant than the map's level
+// keyframes did: over a shelf and onto the wall behind it, under a table, onto a ceiling. Its
+// points still place the vehicle, but the turn they ask for follows those differences (the
+// agile flight's take-off, tilting to 15 degrees: the heading walked by a degree in a second); the
+// heading stays the source's (with the correction so far) until the vehicle levels again.
+bool SlamPipeline::heading_seen(const Eigen::Quaterniond& orientation) const {
+  const double max_tilt = config_.icp.heading_max_tilt;
+  return max_tilt <= 0.0 || tilt_of(orientation) <= max_tilt;
 }
 
 // Step 1's points; beyond the seed, without the floor strikes of a tilted scanner's level beams.
@@ -316,11 +347,24 @@ std::pair<Eigen::Vector4d, Eigen::Vector4d> SlamPipeline::keyframe_drift() const
 }
 
 // The map's covariance where the scan matched, the drift's part weighed with the rate as the
-// checks know it now (checked headings only).
+// checks know it now (checked headings only). Where the map's heading is anchored on the
+// source's (HeadingAnchor), plus how far it may be turned from it about the take-off point o: a
+// turn eps moves the vehicle by eps perp(p - o), so
+//   Sigma += var(eps) a a^T,   a = (perp(p - o), 1)
+// over (x, y, z, yaw): a far match a lever arm's share, the heading the whole of it.
 Eigen::Matrix4d SlamPipeline::map_total() const {
-  if (config_.icp.heading != HeadingMode::PeriodicCheck) return map_error_.total(0.0, 0.0);
-  const HeadingRate::Estimate rate = heading_rate_.estimate();
-  return map_error_.total(rate.rate, rate.variance);
+  Eigen::Matrix4d total = map_error_.total(0.0, 0.0);
+  if (config_.icp.heading == HeadingMode::PeriodicCheck) {
+    const HeadingRate::Estimate rate = heading_rate_.estimate();
+    total = map_error_.total(rate.rate, rate.variance);
+  }
+  const double frame = heading_anchor_.variance();
+  if (frame > 0.0 && map_uncertainty_.keyframes() > 0) {
+    const Vec3 arm = pose_.position - map_uncertainty_.positions().front();
+    const Eigen::Vector4d a(-arm.y(), arm.x(), 0.0, 1.0);
+    total += frame * a * a.transpose();
+  }
+  return total;
 }
 
 // Beyond the seed: the source's heading drift as the checks have learnt it (extensions/
@@ -432,26 +476,55 @@ void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
                                 " keyframes for a map of " +
                                 std::to_string(map_uncertainty_.keyframes()));
   }
-  map_ = WorldMap(make_nearest_neighbour_index(config_.nearest_neighbour),
-                  config_.map.min_point_spacing);
+  rebuild_map(keyframes);
   const double drift_rate = heading_rate_.estimate().rate;
-  std::vector<std::size_t> first_points;
-  std::vector<Vec3> positions;
   for (std::size_t k = 0; k < keyframes.size(); ++k) {
-    first_points.push_back(map_.size());
-    positions.push_back(keyframes[k].position);
-    map_.add_points(keyframes[k].points, keyframes[k].normals);
     // Its heading as the correction it now has: what the drift's checks measure against.
     keyframe_headings_[k] = wrap_angle(keyframe_headings_[k] + keyframes[k].turn);
     if (keyframes[k].turn != 0.0) map_uncertainty_.turn(k, keyframes[k].turn, drift_rate);
   }
+  move_with_map(correction, yaw);
+}
+
+// The vehicle moved with its map: `moved` takes the old frame to the new, a turn of `yaw`.
+void SlamPipeline::move_with_map(const Eigen::Isometry3d& moved, double yaw) {
+  heading_correction_ = wrap_angle(heading_correction_ + yaw);
+  pose_.position = moved * pose_.position;
+  pose_.orientation = yaw_rotation(yaw) * pose_.orientation;
+  last_map_update_position_ = moved * last_map_update_position_;
+  last_map_update_heading_ = wrap_angle(last_map_update_heading_ + yaw);
+}
+
+std::vector<MapKeyframe> SlamPipeline::moved_keyframes(const Eigen::Isometry3d& moved,
+                                                       std::size_t first) const {
+  const std::vector<std::size_t>& starts = map_uncertainty_.first_points();
+  std::vector<MapKeyframe> keyframes;
+  for (std::size_t k = first; k < starts.size(); ++k) {
+    const std::size_t end = k + 1 < starts.size() ? starts[k + 1] : map_.size();
+    MapKeyframe keyframe;
+    keyframe.position = moved * map_uncertainty_.positions()[k];
+    for (std::size_t i = starts[k]; i < end; ++i) {
+      keyframe.points.push_back(moved * map_.point(i));
+      if (!map_.normals().empty()) keyframe.normals.push_back(moved.linear() * map_.normals()[i]);
+    }
+    keyframes.push_back(std::move(keyframe));
+  }
+  return keyframes;
+}
+
+// The map made again of its keyframes' points, in order, at their (moved) positions.
+void SlamPipeline::rebuild_map(const std::vector<MapKeyframe>& keyframes) {
+  map_ = WorldMap(make_nearest_neighbour_index(config_.nearest_neighbour),
+                  config_.map.min_point_spacing);
+  std::vector<std::size_t> first_points;
+  std::vector<Vec3> positions;
+  for (const MapKeyframe& keyframe : keyframes) {
+    first_points.push_back(map_.size());
+    positions.push_back(keyframe.position);
+    map_.add_points(keyframe.points, keyframe.normals);
+  }
   map_uncertainty_.move_keyframes(first_points, positions);
   nearest_.clear();  // the warm start's indices were the old map's
-  heading_correction_ = wrap_angle(heading_correction_ + yaw);
-  pose_.position = correction * pose_.position;
-  pose_.orientation = yaw_rotation(yaw) * pose_.orientation;
-  last_map_update_position_ = correction * last_map_update_position_;
-  last_map_update_heading_ = wrap_angle(last_map_update_heading_ + yaw);
 }
 
 }  // namespace uavslam

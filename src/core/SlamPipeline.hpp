@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "core/Heading.hpp"
 #include "core/ImuBuffer.hpp"
 #include "core/MotionPrediction.hpp"
 #include "core/ScanMatcher.hpp"
@@ -16,6 +17,7 @@
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/HeadingAnchor.hpp"
 #include "core/extensions/HeadingRate.hpp"
 #include "core/extensions/MapUncertainty.hpp"
 #include "core/extensions/MatchNoise.hpp"
@@ -23,6 +25,16 @@
 #include "core/extensions/ScanInformation.hpp"
 
 namespace uavslam {
+
+// The map's frame turned by `yaw` rad about the vertical through `origin` (extensions/
+// HeadingAnchor): every map point, keyframe and the pose moved by transform().
+struct FrameTurn {
+  Vec3 origin = Vec3::Zero();
+  double yaw = 0.0;
+  Eigen::Isometry3d transform() const {
+    return Eigen::Translation3d(origin) * yaw_rotation(yaw) * Eigen::Translation3d(-origin);
+  }
+};
 
 struct ScanReport {
   ScanOutcome outcome = ScanOutcome::Malformed;
@@ -54,6 +66,10 @@ struct ScanReport {
   // The gate had turned away the matches before this one, each agreeing with the last, and this
   // one, agreeing with them, was taken against the prior (icp.prior_gate_overrule).
   bool prior_overruled = false;
+  // After this scan the map's frame was turned onto the source's heading (icp.heading_anchor):
+  // this report (pose, added_points) and the map are in the turned frame, the reports before in
+  // the old one.
+  std::optional<FrameTurn> frame_turn;
 
   // The pose's covariance in the map's frame as a whole (from the take-off point): the match's
   // relative to the map, and the map's own. What goes to those who fly on the pose.
@@ -97,6 +113,15 @@ class SlamPipeline {
   void replace_map(const std::vector<MapKeyframe>& keyframes, const Eigen::Isometry3d& correction,
                    double yaw);
 
+  // The map's keyframes from `first` on, each moved by `moved` (points, normals, position), as
+  // replace_map takes them.
+  std::vector<MapKeyframe> moved_keyframes(const Eigen::Isometry3d& moved,
+                                           std::size_t first = 0) const;
+
+  // False while the map's heading may still be turned onto the source's (icp.heading_anchor):
+  // whoever keeps copies of keyframes in the map's frame turns them by the report's frame_turn.
+  bool frame_settled() const { return heading_anchor_.settled(); }
+
   const WorldMap& map() const { return map_; }
   const Pose& pose() const { return pose_; }
   const SlamConfig& config() const { return config_; }
@@ -128,6 +153,7 @@ class SlamPipeline {
   Eigen::Quaterniond corrected(const Eigen::Quaterniond& source_orientation) const;
   bool heading_check_due(const Pose& predicted) const;
   MatchResult match(const ScanPoints& points, const Pose& predicted);
+  bool heading_seen(const Eigen::Quaterniond& orientation) const;
   bool stale(double stamp) const;
   bool moved_enough_for_map_update(const Pose& pose) const;
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
@@ -140,6 +166,9 @@ class SlamPipeline {
   std::pair<Eigen::Vector4d, Eigen::Vector4d> keyframe_drift() const;
   Eigen::Matrix4d map_total() const;
   void follow_heading_drift(double stamp);
+  void anchor_heading(ScanReport& report);
+  void rebuild_map(const std::vector<MapKeyframe>& keyframes);
+  void move_with_map(const Eigen::Isometry3d& moved, double yaw);
   // What a check before a keyframe says of the source's drift (HeadingRate::add_check's terms).
   struct DriftCheck {
     double disagreement = 0.0;
@@ -174,6 +203,7 @@ class SlamPipeline {
   MapUncertainty map_uncertainty_;
   MapError map_error_;  // the last match's, (x, y, z, yaw)
   HeadingRate heading_rate_;
+  HeadingAnchor heading_anchor_;
   std::optional<double> drift_followed_until_;  // the stamp the drift was added up to
   std::optional<DriftCheck> drift_check_;       // this scan's, until the gate has judged it
   std::vector<double> keyframe_stamps_;         // one per keyframe, with

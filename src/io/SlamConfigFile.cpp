@@ -75,6 +75,14 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.heading_check_tolerance = v.as_double(NumberRange::non_negative());
        }},
+      {"icp", "heading_anchor",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.heading_anchor = v.as_double(NumberRange::non_negative());
+       }},
+      {"icp", "heading_max_tilt",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.icp.heading_max_tilt = v.as_double(NumberRange::non_negative());
+       }},
       {"icp", "max_rotation",
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.max_rotation = v.as_double(NumberRange::non_negative());

@@ -66,6 +66,10 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
   const auto started = Clock::now();
   if (graph_) result.map_corrected = apply_graph_update();
   result.report = pipeline_.process_scan(scan, predicted_motion(scan.stamp));
+  if (result.report.frame_turn) {
+    turn_frame(*result.report.frame_turn);
+    result.map_corrected = true;
+  }
   if (result.posed()) scan_posed(result.report);
   result.pipeline_seconds = seconds_since(started);
   result.tracking = tracking_.judge(scan, result.report, skipped_before);
@@ -85,7 +89,15 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
     inline_update_seconds_ += seconds_since(applying);
   }
   if (result.report.map_updated) result.keyframe = keyframe_of(scan, result.report);
-  if (result.posed()) add_dense(scan, result.report, result.keyframe ? &*result.keyframe : nullptr);
+  if (result.posed() && (cloud_ || occupancy_)) {
+    const Vec3* origin = result.keyframe ? &result.keyframe->sensor_origin : nullptr;
+    if (pipeline_.frame_settled()) {
+      add_dense(scan, result.report.pose, origin);
+    } else {
+      unsettled_scans_.push_back(
+          {scan, result.report.pose, origin ? std::optional<Vec3>(*origin) : std::nullopt});
+    }
+  }
   result.heading_drift = pipeline_.heading_drift();
   return result;
 }
@@ -103,18 +115,44 @@ Keyframe VehicleSlam::keyframe_of(const Scan& scan, ScanReport& report) {
 
 // The offline variant's products: every valid point of the posed scan into the cloud, and a
 // keyframe's full scan into the OctoMap (ray-casting every scan would cost more than the matching).
-void VehicleSlam::add_dense(const Scan& scan, const ScanReport& report, const Keyframe* keyframe) {
+void VehicleSlam::add_dense(const Scan& scan, const Pose& pose, const Vec3* sensor_origin) {
   if (cloud_) {
     const auto started = Clock::now();
-    cloud_->add_scan(scan, report.pose);
+    cloud_->add_scan(scan, pose);
     cloud_seconds_ += seconds_since(started);
   }
-  if (!occupancy_ || !keyframe) return;
+  if (!occupancy_ || !sensor_origin) return;
   const auto started = Clock::now();
-  Points points = project_scan(scan, report.pose.orientation).points;
-  for (Vec3& p : points) p += report.pose.position;
-  occupancy_->insert_keyframe(points, keyframe->sensor_origin);
+  Points points = project_scan(scan, pose.orientation).points;
+  for (Vec3& p : points) p += pose.position;
+  occupancy_->insert_keyframe(points, *sensor_origin);
   occupancy_seconds_ += seconds_since(started);
+}
+
+// The pipeline turned its map onto the source's heading (icp.heading_anchor): the keyframe poses,
+// the motion prior, and what waited for it, turned alike; then the waiting keyframes go to the
+// back end and the scans into the dense products.
+void VehicleSlam::turn_frame(const FrameTurn& turn) {
+  const Eigen::Isometry3d moved = turn.transform();
+  const backend::MapCorrection correction{moved, turn.yaw};
+  for (backend::NodePose& pose : keyframe_poses_) pose = correction(pose);
+  if (inertial_) inertial_->reanchor(moved);
+  const Eigen::Matrix2d r = moved.linear().topLeftCorner<2, 2>();
+  for (GraphKeyframe& keyframe : unsettled_keyframes_) {
+    keyframe.pose = correction(keyframe.pose);
+    for (Vec3& p : keyframe.points) p = moved * p;
+    for (Vec3& n : keyframe.normals) n = moved.linear() * n;
+    keyframe.unseen = r * keyframe.unseen * r.transpose();
+    graph_->add(std::move(keyframe));
+  }
+  unsettled_keyframes_.clear();
+  for (UnsettledScan& held : unsettled_scans_) {
+    held.pose.position = moved * held.pose.position;
+    held.pose.orientation = yaw_rotation(turn.yaw) * held.pose.orientation;
+    if (held.sensor_origin) held.sensor_origin = moved * *held.sensor_origin;
+    add_dense(held.scan, held.pose, held.sensor_origin ? &*held.sensor_origin : nullptr);
+  }
+  unsettled_scans_.clear();
 }
 
 // The keyframe, with the points (and normals) it added to the map, to the back end.
@@ -139,7 +177,11 @@ void VehicleSlam::add_to_graph(const ScanReport& report) {
       ++headings_turned_;
     }
   }
-  graph_->add(std::move(keyframe));
+  if (pipeline_.frame_settled()) {
+    graph_->add(std::move(keyframe));
+  } else {
+    unsettled_keyframes_.push_back(std::move(keyframe));
+  }
 }
 
 // The back end's newest update, if there is one: the keyframes it has where the graph puts them,
@@ -150,19 +192,8 @@ bool VehicleSlam::apply_graph_update() {
   if (!update) return false;
   const backend::MapCorrection& correction = update->correction;
   std::vector<MapKeyframe> keyframes = std::move(update->keyframes);
-  const WorldMap& map = pipeline_.map();
-  const std::vector<std::size_t>& starts = pipeline_.keyframe_starts();
-  for (std::size_t k = keyframes.size(); k < starts.size(); ++k) {
-    const std::size_t end = k + 1 < starts.size() ? starts[k + 1] : map.size();
-    MapKeyframe moved;
-    moved.position = correction.transform * keyframe_poses_[k].position;
+  for (MapKeyframe& moved : pipeline_.moved_keyframes(correction.transform, keyframes.size())) {
     moved.turn = correction.yaw;
-    for (std::size_t i = starts[k]; i < end; ++i) {
-      moved.points.push_back(correction.transform * map.point(i));
-      if (!map.normals().empty()) {
-        moved.normals.push_back(correction.transform.linear() * map.normals()[i]);
-      }
-    }
     keyframes.push_back(std::move(moved));
   }
   for (std::size_t k = 0; k < update->poses.size() && k < keyframe_poses_.size(); ++k) {
@@ -189,6 +220,8 @@ double VehicleSlam::backend_seconds() const {
 }
 
 bool VehicleSlam::finish() {
+  // A run that ended before the map's heading settled: what waited goes in as it is.
+  if (!unsettled_keyframes_.empty() || !unsettled_scans_.empty()) turn_frame(FrameTurn{});
   if (!graph_ || keyframes_ == 0) return false;
   graph_->finish();
   const auto applying = Clock::now();

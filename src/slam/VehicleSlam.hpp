@@ -11,7 +11,10 @@
 //   - the pose-graph back end (loop_closure.enabled, backend/KeyframeGraph): every keyframe into
 //     the graph; when a loop moves the keyframes, the pipeline's map is rebuilt on them and the
 //     motion prior moves with it; so too when the heading drift the pipeline learnt turns the
-//     keyframes made before it (SlamPipeline::heading_turns).
+//     keyframes made before it (SlamPipeline::heading_turns);
+//   - the map's first frame: while the pipeline may still turn it onto the orientation source's
+//     heading (icp.heading_anchor), the keyframes wait for the back end and the scans for the
+//     dense products, and go in turned with it.
 #pragma once
 
 #include <cstddef>
@@ -128,9 +131,20 @@ class VehicleSlam {
   MotionPrediction predicted_motion(double stamp);
   void scan_posed(const ScanReport& report);
   Keyframe keyframe_of(const Scan& scan, ScanReport& report);
-  void add_dense(const Scan& scan, const ScanReport& report, const Keyframe* keyframe);
+  void add_dense(const Scan& scan, const Pose& pose, const Vec3* sensor_origin);
   void add_to_graph(const ScanReport& report);
   bool apply_graph_update();
+  void turn_frame(const FrameTurn& turn);
+
+  // What waits for the map's heading to settle (SlamPipeline::frame_settled): the keyframes for
+  // the back end and the scans for the dense products, in the map's first frame.
+  struct UnsettledScan {
+    Scan scan;
+    Pose pose;
+    std::optional<Vec3> sensor_origin;  // a keyframe's
+  };
+  std::vector<GraphKeyframe> unsettled_keyframes_;
+  std::vector<UnsettledScan> unsettled_scans_;
 
   SlamPipeline pipeline_;
   std::optional<OdometryPrior> odometry_;

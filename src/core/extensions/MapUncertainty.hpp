@@ -68,6 +68,8 @@ class MapUncertainty {
   std::size_t keyframes() const { return first_points_.size(); }
   // Each keyframe's first point in the map, in keyframe order.
   const std::vector<std::size_t>& first_points() const { return first_points_; }
+  // Each keyframe's body position, in keyframe order.
+  const std::vector<Vec3>& positions() const { return positions_; }
 
   // The same keyframes, in the same order, now starting at these map indices and taken at these
   // positions (the map was rebuilt); throws std::invalid_argument for another count.

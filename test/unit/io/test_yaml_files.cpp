@@ -315,6 +315,8 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.icp.heading, defaults.icp.heading);
   EXPECT_EQ(config.icp.heading_check_every, defaults.icp.heading_check_every);
   EXPECT_EQ(config.icp.heading_check_tolerance, defaults.icp.heading_check_tolerance);
+  EXPECT_EQ(config.icp.heading_anchor, defaults.icp.heading_anchor);
+  EXPECT_EQ(config.icp.heading_max_tilt, defaults.icp.heading_max_tilt);
   EXPECT_EQ(config.icp.max_rotation, defaults.icp.max_rotation);
   EXPECT_EQ(config.icp.metric, defaults.icp.metric);
   EXPECT_EQ(config.icp.prior_weight, defaults.icp.prior_weight);
@@ -370,12 +372,15 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
 // The UAV's configuration is the seed's plus the motion model, the degeneracy analysis, the
 // seed's own suggestion of a periodic heading check, the gate on the motion prior, the robust
 // refinement, the floor strikes set aside and the back end.
-TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingCheckGateAndLines) {
+TEST(SlamConfigFile,
+     TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyAnchoredHeadingGateAndLines) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
   EXPECT_EQ(config.icp.motion_prior, MotionPrior::Imu);
   EXPECT_EQ(config.icp.metric, IcpMetric::PointToLine);
   EXPECT_GT(config.degeneracy.threshold, 0.0);
-  EXPECT_EQ(config.icp.heading, HeadingMode::PeriodicCheck);
+  EXPECT_EQ(config.icp.heading, HeadingMode::EveryScan);
+  EXPECT_GT(config.icp.heading_anchor, 0.0);
+  EXPECT_GT(config.icp.heading_max_tilt, 0.0);
   EXPECT_GT(config.icp.prior_gate, 0.0);
   EXPECT_TRUE(config.motion.fuse_velocity);
   EXPECT_TRUE(config.loop_closure.enabled);
@@ -388,6 +393,8 @@ TEST(SlamConfigFile, TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyHeadingC
   config.motion.fuse_velocity = SlamConfig{}.motion.fuse_velocity;
   config.degeneracy.threshold = SlamConfig{}.degeneracy.threshold;
   config.icp.heading = SlamConfig{}.icp.heading;
+  config.icp.heading_anchor = SlamConfig{}.icp.heading_anchor;
+  config.icp.heading_max_tilt = SlamConfig{}.icp.heading_max_tilt;
   config.icp.prior_gate = SlamConfig{}.icp.prior_gate;
   config.icp.metric = SlamConfig{}.icp.metric;
   expect_default_slam_config(config);
@@ -410,6 +417,8 @@ icp:
   heading: periodic_check
   heading_check_every: 7
   heading_check_tolerance: 0.02
+  heading_anchor: 2.5
+  heading_max_tilt: 0.3
   max_rotation: 0.2
   metric: point_to_line
   prior_weight: 0.01
@@ -487,6 +496,8 @@ loop_closure:
   EXPECT_EQ(c.icp.heading, HeadingMode::PeriodicCheck);
   EXPECT_EQ(c.icp.heading_check_every, 7);
   EXPECT_EQ(c.icp.heading_check_tolerance, 0.02);
+  EXPECT_EQ(c.icp.heading_anchor, 2.5);
+  EXPECT_EQ(c.icp.heading_max_tilt, 0.3);
   EXPECT_EQ(c.icp.max_rotation, 0.2);
   EXPECT_EQ(c.icp.metric, IcpMetric::PointToLine);
   EXPECT_EQ(c.icp.prior_weight, 0.01);

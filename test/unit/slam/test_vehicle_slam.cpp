@@ -100,5 +100,68 @@ TEST_F(VehicleSlamInRoom, DenseProductsOnlyWhenAskedFor) {
   EXPECT_EQ(offline.cloud(), nullptr);
 }
 
+// With icp.heading_anchor the map is turned onto the orientation source's heading once the first
+// scans have measured it: the keyframes made meanwhile wait for the back end and the scans for
+// the dense products, and go in turned; a run that ends first puts them in as they are.
+class SettlingHeading : public VehicleSlamInRoom {
+ protected:
+  static constexpr double kNoise = 0.5 * M_PI / 180.0;  // the first sample's, rad
+
+  SettlingHeading() {
+    config.nearest_neighbour.index = IndexKind::Exact;
+    config.icp.motion_prior = MotionPrior::Odometry;
+    config.icp.heading = HeadingMode::EveryScan;
+    config.icp.metric = IcpMetric::PointToLine;
+    config.icp.iterations = 20;
+    config.icp.heading_anchor = 0.5;
+    config.loop_closure.enabled = true;
+  }
+
+  // Scans 0.1 s apart, 0.3 m further along x each: a keyframe every second scan.
+  std::vector<VehicleScan> fly_along(VehicleSlam& slam, int scans) {
+    std::vector<VehicleScan> out;
+    for (int k = 0; k < scans; ++k) {
+      const double stamp = 0.1 * k;
+      const Vec3 position = start + Vec3(0.3 * k, 0.0, 0.0);
+      ImuSample imu = level_imu(stamp);
+      imu.orientation = Eigen::AngleAxisd(k == 0 ? kNoise : 0.0, Vec3::UnitZ());
+      slam.add_imu(imu);
+      slam.add_odometry({stamp, position - start});
+      out.push_back(slam.process_scan(room.scan_at(level_pose(position, stamp), stamp)));
+      EXPECT_TRUE(out.back().posed()) << "scan " << k;
+    }
+    return out;
+  }
+};
+
+TEST_F(SettlingHeading, KeyframesAndDenseScansGoInTurnedOnceTheHeadingSettles) {
+  VehicleSlam slam(config, {0.0, std::nullopt});
+  slam.start_at(start);
+  const std::vector<VehicleScan> scans = fly_along(slam, 10);
+  ASSERT_FALSE(scans[4].report.frame_turn);
+  ASSERT_TRUE(scans[5].report.frame_turn) << "the first scan 0.5 s after the first";
+  EXPECT_TRUE(scans[5].map_corrected) << "those who keep keyframes move them";
+  EXPECT_EQ(slam.cloud()->points_added(), 10u * 1080u) << "the held scans went in with it";
+  ASSERT_TRUE(slam.finish());
+  ASSERT_GE(slam.keyframe_poses().size(), 4u);
+  for (const backend::NodePose& keyframe : slam.keyframe_poses()) {
+    EXPECT_LT(std::abs(keyframe.yaw), 0.002) << "the graph has the turned keyframes";
+  }
+}
+
+TEST_F(SettlingHeading, ARunShorterThanTheWindowKeepsItsKeyframesAsTheyAre) {
+  config.icp.heading_anchor = 5.0;
+  VehicleSlam slam(config, {0.0, std::nullopt});
+  slam.start_at(start);
+  fly_along(slam, 4);
+  EXPECT_EQ(slam.cloud()->points_added(), 0u) << "held while the heading may turn";
+  ASSERT_TRUE(slam.finish());
+  EXPECT_EQ(slam.cloud()->points_added(), 4u * 1080u);
+  ASSERT_EQ(slam.keyframe_poses().size(), 2u);
+  for (const backend::NodePose& keyframe : slam.keyframe_poses()) {
+    EXPECT_NEAR(keyframe.yaw, kNoise, 0.002) << "the first sample's heading, never turned";
+  }
+}
+
 }  // namespace
 }  // namespace uavslam
