@@ -171,6 +171,11 @@ void print_summary(std::ostream& out, const RunSummary& s) {
     out << std::setprecision(2) << "  heading drift     " << degrees_per_minute(run.heading_drift)
         << " deg/min: the IMU's, learnt from the heading checks and followed\n";
   }
+  if (run.heading_anchor) {
+    out << std::setprecision(2) << "  heading anchor    the map turned "
+        << rad_to_deg(run.heading_anchor->yaw) << " deg onto the IMU's heading after "
+        << run.heading_anchor->after << " s of scans\n";
+  }
   if (!run.prior_distances.empty()) {
     const eval::SampleStats d = eval::summarize(run.prior_distances);
     out << std::setprecision(2) << "  match vs prior    p50 " << d.p50 << ", p99 " << d.p99
@@ -222,6 +227,10 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
         {"nees_mean", nees.mean}, {"poses", nees.count}, {"state_dimension", nees.mean_dimension}};
   }
   j["heading_drift_deg_per_min"] = degrees_per_minute(run.heading_drift);
+  if (run.heading_anchor) {
+    j["heading_anchor"] = {{"turn_deg", rad_to_deg(run.heading_anchor->yaw)},
+                           {"after_s", run.heading_anchor->after}};
+  }
   if (!run.prior_distances.empty()) {
     const eval::SampleStats d = eval::summarize(run.prior_distances);
     j["match_vs_prior_sigmas"] = {{"p50", d.p50}, {"p99", d.p99}, {"max", d.max}};

@@ -133,6 +133,10 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
       if (nees) run.nees.push_back(*nees);
       if (report.prior_distance > 0.0) run.prior_distances.push_back(report.prior_distance);
     }
+    if (report.frame_turn) {
+      run.heading_anchor =
+          SlamRun::AnchorTurn{report.frame_turn->yaw, scan.stamp - log.scans.front().stamp};
+    }
     run.tracking.add(result.tracking);
     run.trace.push_back({scan.stamp, report.outcome, report.points_used, report.error_before,
                          report.error_after, report.iterations, report.map_updated,

@@ -75,6 +75,13 @@ struct SlamRun {
   std::vector<double> prior_distances;  // sigmas, of every accepted match measured against a prior
   // rad/s: the IMU's heading drift, as the heading checks learnt it (0: none followed).
   double heading_drift = 0.0;
+  // The map turned onto the IMU's heading (icp.heading_anchor): by how much (rad) and how long
+  // after the first scan (s); none without an anchor.
+  struct AnchorTurn {
+    double yaw = 0.0;
+    double after = 0.0;
+  };
+  std::optional<AnchorTurn> heading_anchor;
   Points map;
   double wall_seconds = 0.0;  // whole run, pipeline only
   bool stopped_early = false;

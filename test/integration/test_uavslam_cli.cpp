@@ -282,6 +282,12 @@ TEST_F(UavslamCli, ATiltedScannerLeavesTheHeadingToTheImu) {
 // shipped config takes the heading from every scan (seeds 1-2: 0.086 against 0.236 m).
 TEST_F(UavslamCli, AHallsFarWallsTakeTheHeadingFromEveryScan) {
   const double every_scan = mean_ate(dir / "every", "hall", "", 2);
+  // The map turned once onto the IMU's heading, by about one sample's noise (0.1 degree).
+  std::ifstream json_file(dir / "every" / "seed1" / "summary.json");
+  const nlohmann::json anchor = nlohmann::json::parse(json_file).at("heading_anchor");
+  EXPECT_LT(std::abs(anchor.at("turn_deg").get<double>()), 0.5);
+  EXPECT_GE(anchor.at("after_s").get<double>(), 3.0);
+  EXPECT_LT(anchor.at("after_s").get<double>(), 3.1);
   const double checked = mean_ate(dir / "checked", "hall", "--set icp.heading=periodic_check", 2);
   EXPECT_LE(every_scan, 0.15);
   EXPECT_LT(every_scan, 0.6 * checked) << "checked " << checked << " m";
