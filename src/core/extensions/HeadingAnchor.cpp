@@ -18,7 +18,6 @@ std::optional<double> HeadingAnchor::add(double stamp, double correction) {
   sum_ += c;
   squares_ += c * c;
   if (stamp - *start_ < window_) return std::nullopt;
-  settled_variance_ = sample_variance() / double(n_);
   settled_ = true;
   return -sum_ / double(n_);
 }
@@ -31,7 +30,8 @@ double HeadingAnchor::sample_variance() const {
 
 double HeadingAnchor::variance() const {
   if (window_ <= 0.0) return 0.0;
-  return settled_ ? settled_variance_ : sample_variance();
+  // Once turned, the corrections are no longer added: the mean's variance is theirs over N.
+  return settled_ ? sample_variance() / double(n_) : sample_variance();
 }
 
 }  // namespace uavslam

@@ -45,7 +45,6 @@ class HeadingAnchor {
   std::size_t n_ = 0;  // corrections so far, their sum and the sum of their squares
   double sum_ = 0.0;
   double squares_ = 0.0;
-  double settled_variance_ = 0.0;
   bool settled_ = false;
 };
 
