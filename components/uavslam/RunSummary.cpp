@@ -127,6 +127,13 @@ struct FloorStrikes {
   std::size_t scans = 0;
 };
 
+// Scans whose height the floor's level measured (floor.level_gate).
+std::size_t heights_from_floor(const SlamRun& run) {
+  std::size_t count = 0;
+  for (const ScanTrace& t : run.trace) count += t.height_from_floor;
+  return count;
+}
+
 FloorStrikes floor_strikes(const SlamRun& run) {
   FloorStrikes strikes;
   for (const ScanTrace& t : run.trace) {
@@ -145,6 +152,10 @@ void print_summary(std::ostream& out, const RunSummary& s) {
   if (const FloorStrikes strikes = floor_strikes(run); strikes.points > 0) {
     out << "  floor strikes     " << strikes.points << " points set aside in " << strikes.scans
         << " scans (level beams of the tilted scanner on the floor)\n";
+  }
+  if (const std::size_t floor = heights_from_floor(run); floor > 0) {
+    out << "  floor level       the height measured from the take-off floor's level in " << floor
+        << " of " << s.accepted() << " matched scans\n";
   }
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
@@ -218,7 +229,8 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
                 {"accepted", s.accepted()},
                 {"rejected", run.scans_in - s.accepted()},
                 {"rejected_by_reason", rejected},
-                {"floor_strikes", {{"points", strikes.points}, {"scans", strikes.scans}}}};
+                {"floor_strikes", {{"points", strikes.points}, {"scans", strikes.scans}}},
+                {"height_from_floor", heights_from_floor(run)}};
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
   j["tracking"] = to_json(run.tracking);
   if (!run.nees.empty()) {

@@ -55,6 +55,7 @@ struct ScanTrace {
   double prior_distance = 0.0;    // sigmas between the match and the motion prior's prediction
   TrackingStatus tracking;
   std::size_t floor_returns = 0;   // level beams' points set aside as floor strikes
+  bool height_from_floor = false;  // the height measured from the floor's level (floor.level_gate)
   std::optional<eval::Nees> nees;  // of the reported position against the truth
 };
 

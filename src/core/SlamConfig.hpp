@@ -83,6 +83,16 @@ struct SlamConfig {
     double floor_margin = 0.0;
   } scan;
 
+  // Beyond the seed: the height from the floor's level (extensions/FloorLevel), for a scanner
+  // with floor beams. m; > 0: a floor seen within this of the level taken over the first
+  // level_window seconds is that floor, and measures the height (0: the height is the match's
+  // alone, chained over floor the map has not seen, as the seed).
+  struct Floor {
+    double level_gate = 0.0;
+    double level_window = 1.0;  // s, from the first scan that sees the floor
+    double flatness = 0.01;     // m; how far a floor's level differs from place to place (sigma)
+  } floor;
+
   // Step 3-5: the translation-only ICP (Figure 5.15).
   struct Icp {
     int iterations = 10;            // fixed count, no convergence test (seed 5.4.3.2)

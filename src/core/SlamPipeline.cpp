@@ -37,7 +37,8 @@ SlamPipeline::SlamPipeline(const SlamConfig& config, const Vec3& initial_positio
       gate_(config.icp.prior_gate, config.icp.prior_gate_overrule),
       heading_rate_(config.imu.heading_drift_sigma),
       heading_anchor_(config.icp.heading == HeadingMode::EveryScan ? config.icp.heading_anchor
-                                                                   : 0.0) {
+                                                                   : 0.0),
+      floor_level_(config.floor.level_window, config.floor.level_gate, config.floor.flatness) {
   pose_.position = initial_position;
 }
 
@@ -72,6 +73,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     // The first scan seeds the map where the vehicle starts.
     pose_ = {scan.stamp, pose_.position, orientation};
     report.outcome = ScanOutcome::MapInitialised;
+    height_from_floor(report, projected);
     report.pose = pose_;
     add_to_map(report, projected);
     anchor_heading(report);
@@ -140,6 +142,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   pose_ = {scan.stamp, position, orientation};
   covariance_ = report.covariance;
   if (config_.degeneracy.threshold > 0.0) map_error_ = map_part(report, match);
+  height_from_floor(report, projected);
   report.map_covariance = map_total().topLeftCorner<3, 3>();
   report.pose = pose_;
   if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
@@ -161,6 +164,34 @@ void SlamPipeline::anchor_heading(ScanReport& report) {
   for (Vec3& p : report.added_points) p = moved * p;
   report.pose = pose_;
   report.frame_turn = turn;
+}
+
+// Beyond the seed (extensions/FloorLevel): where the floor seen is the floor taken off from, its
+// level measures the height absolutely, and the match's height, chained through the map, is fused
+// with it by their variances (the match's and the map's under it, the whole of what the chained
+// height may be off by):
+//   z = (z_m / v_m + z_f / v_f) / (1 / v_m + 1 / v_f),   v = 1 / (1 / v_m + 1 / v_f)
+// The height is then absolute: the map's part of its covariance no longer stands under it.
+void SlamPipeline::height_from_floor(ScanReport& report, const ProjectedScan& projected) {
+  if (config_.floor.level_gate <= 0.0) return;
+  const std::optional<FloorSighting> floor = floor_below(projected);
+  if (!floor) return;
+  const std::optional<HeightFix> fix = floor_level_.add(pose_.stamp, pose_.position.z(), *floor);
+  if (!fix) return;
+  const double chained = covariance_(2, 2) + map_error_.covariance(2, 2);
+  const double variance = chained > 0.0 ? 1.0 / (1.0 / chained + 1.0 / fix->variance) : 0.0;
+  pose_.position.z() = chained > 0.0
+                           ? variance * (pose_.position.z() / chained + fix->height / fix->variance)
+                           : fix->height;
+  covariance_.row(2).setZero();
+  covariance_.col(2).setZero();
+  covariance_(2, 2) = chained > 0.0 ? variance : fix->variance;
+  map_error_.covariance.row(2).setZero();
+  map_error_.covariance.col(2).setZero();
+  map_error_.drift(2) = 0.0;
+  map_error_.applied(2) = 0.0;
+  report.covariance = covariance_;
+  report.height_from_floor = true;
 }
 
 // A rejected scan: with a motion prior, the vehicle went where the prior says (the start), with

@@ -17,6 +17,7 @@
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/FloorLevel.hpp"
 #include "core/extensions/HeadingAnchor.hpp"
 #include "core/extensions/HeadingRate.hpp"
 #include "core/extensions/MapUncertainty.hpp"
@@ -49,6 +50,8 @@ struct ScanReport {
   // The match failed and the pose is the predicted one (the last pose moved by the motion prior):
   // the vehicle went where the other source says, not where it was.
   bool dead_reckoned = false;
+  // The height was measured from the floor's level (floor.level_gate, extensions/FloorLevel).
+  bool height_from_floor = false;
   // After a gap in the scans the ICP searched a grid of starts (core/Relocalisation).
   bool relocalised = false;
   std::size_t map_size = 0;
@@ -167,6 +170,7 @@ class SlamPipeline {
   Eigen::Matrix4d map_total() const;
   void follow_heading_drift(double stamp);
   void anchor_heading(ScanReport& report);
+  void height_from_floor(ScanReport& report, const ProjectedScan& projected);
   void rebuild_map(const std::vector<MapKeyframe>& keyframes);
   void move_with_map(const Eigen::Isometry3d& moved, double yaw);
   // What a check before a keyframe says of the source's drift (HeadingRate::add_check's terms).
@@ -204,6 +208,7 @@ class SlamPipeline {
   MapError map_error_;  // the last match's, (x, y, z, yaw)
   HeadingRate heading_rate_;
   HeadingAnchor heading_anchor_;
+  FloorLevel floor_level_;
   std::optional<double> drift_followed_until_;  // the stamp the drift was added up to
   std::optional<DriftCheck> drift_check_;       // this scan's, until the gate has judged it
   std::vector<double> keyframe_stamps_;         // one per keyframe, with

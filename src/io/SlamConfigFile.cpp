@@ -41,6 +41,18 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.scan.floor_margin = v.as_double(NumberRange::non_negative());
        }},
+      {"floor", "level_gate",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.floor.level_gate = v.as_double(NumberRange::non_negative());
+       }},
+      {"floor", "level_window",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.floor.level_window = v.as_double(NumberRange::non_negative());
+       }},
+      {"floor", "flatness",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.floor.flatness = v.as_double(NumberRange::non_negative());
+       }},
       {"icp", "iterations",
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.iterations = v.as_int(NumberRange::at_least(1));
