@@ -1,5 +1,6 @@
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -368,6 +369,49 @@ TEST_F(PipelineInRoom, APlanarScannersHeightIsNotCalledDegenerate) {
   ASSERT_EQ(r.outcome, ScanOutcome::Accepted);
   EXPECT_EQ(r.seen.degenerate, 0);
   EXPECT_EQ(r.seen.observed(2, 2), 0.0) << "nor is it measured";
+}
+
+// With floor beams (the first 30 turned into a fan about straight down, as a mirror deflects
+// them), the floor's level taken over the first second measures the height afterwards
+// (floor.level_gate), and the height's variance is the fused one, under the floor's own; a floor
+// that is not the level's (the vehicle over a 0.5 m platform, beyond the pairing distance, where
+// the match cannot follow it as a drop of the vehicle) measures nothing.
+TEST_F(PipelineInRoom, TheFloorsLevelMeasuresTheHeightWhereThatFloorIsSeen) {
+  auto geometry = std::make_shared<ScanGeometry>(*room.geometry);
+  for (std::size_t i = 0; i < 30; ++i) {
+    const double across = (double(i) - 14.5) / 14.5 * 10.0 * M_PI / 180.0;
+    geometry->directions[i] = Vec3(0.0, std::sin(across), -std::cos(across));
+  }
+  room.geometry = geometry;
+  config.nearest_neighbour.index = IndexKind::Exact;
+  config.degeneracy.threshold = 0.05;  // gives the match its covariance
+  config.floor.level_gate = 0.1;
+  config.floor.flatness = 0.01;
+  SlamPipeline slam(config, start);
+  double t = 0.0;
+  const auto hover = [&](double until) {
+    ScanReport last;
+    for (; t < until; t += 0.025) {
+      slam.add_imu(level_imu(t));
+      last = slam.process_scan(room.scan_at(pose_at(start, t), t),
+                               {Vec3::Zero(), 1e-4 * Eigen::Matrix3d::Identity()});
+    }
+    return last;
+  };
+  EXPECT_FALSE(hover(0.9).height_from_floor) << "the level is still being taken";
+  const ScanReport measured = hover(1.5);
+  ASSERT_TRUE(measured.accepted());
+  EXPECT_TRUE(measured.height_from_floor);
+  EXPECT_NEAR(measured.pose.position.z(), start.z(), 1e-3);
+  EXPECT_GT(measured.covariance(2, 2), 0.0);
+  EXPECT_LE(measured.covariance(2, 2), 0.01 * 0.01 + 1e-9) << "no surer than the floor's flatness";
+  EXPECT_EQ(measured.map_covariance(2, 2), 0.0) << "absolute: no map under it";
+
+  room.lo.z() = 0.5;  // a platform under the whole scan
+  slam.add_imu(level_imu(t));
+  const ScanReport platform = slam.process_scan(room.scan_at(pose_at(start, t), t),
+                                                {Vec3::Zero(), 1e-4 * Eigen::Matrix3d::Identity()});
+  EXPECT_FALSE(platform.height_from_floor);
 }
 
 TEST_F(PipelineInRoom, AMatchThatDisagreesWithThePriorIsRejected) {
