@@ -178,14 +178,17 @@ void SlamPipeline::height_from_floor(ScanReport& report, const ProjectedScan& pr
   if (!floor) return;
   const std::optional<HeightFix> fix = floor_level_.add(pose_.stamp, pose_.position.z(), *floor);
   if (!fix) return;
+  // Without a covariance (degeneracy off) the match's height states no spread: the fix's stands.
+  HeightFix fused = *fix;
   const double chained = covariance_(2, 2) + map_error_.covariance(2, 2);
-  const double variance = chained > 0.0 ? 1.0 / (1.0 / chained + 1.0 / fix->variance) : 0.0;
-  pose_.position.z() = chained > 0.0
-                           ? variance * (pose_.position.z() / chained + fix->height / fix->variance)
-                           : fix->height;
+  if (chained > 0.0) {
+    fused.variance = 1.0 / (1.0 / chained + 1.0 / fix->variance);
+    fused.height = fused.variance * (pose_.position.z() / chained + fix->height / fix->variance);
+  }
+  pose_.position.z() = fused.height;
   covariance_.row(2).setZero();
   covariance_.col(2).setZero();
-  covariance_(2, 2) = chained > 0.0 ? variance : fix->variance;
+  covariance_(2, 2) = fused.variance;
   map_error_.covariance.row(2).setZero();
   map_error_.covariance.col(2).setZero();
   map_error_.drift(2) = 0.0;
