@@ -55,6 +55,30 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
   return pairs;
 }
 
+void drop_pairs_without_normal(Correspondences& pairs) {
+  if (pairs.normals.empty()) return;
+  const bool with_scan_normals = !pairs.scan_normals.empty();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
+    Vec3 w = pairs.weights[i];
+    if (pairs.normals[i].isZero()) w.head<2>().setZero();
+    if (w.isZero()) continue;
+    pairs.scan[kept] = pairs.scan[i];
+    pairs.map[kept] = pairs.map[i];
+    pairs.map_index[kept] = pairs.map_index[i];
+    pairs.weights[kept] = w;
+    pairs.normals[kept] = pairs.normals[i];
+    if (with_scan_normals) pairs.scan_normals[kept] = pairs.scan_normals[i];
+    ++kept;
+  }
+  pairs.scan.resize(kept);
+  pairs.map.resize(kept);
+  pairs.map_index.resize(kept);
+  pairs.weights.resize(kept);
+  pairs.normals.resize(kept);
+  if (with_scan_normals) pairs.scan_normals.resize(kept);
+}
+
 Vec3 best_translation(const Correspondences& pairs) {
   Vec3 weighted_sum = Vec3::Zero();
   Vec3 weight_total = Vec3::Zero();
@@ -103,6 +127,14 @@ PlanarCorrection ScanMatcher::step(const Correspondences& pairs, const Vec3& bod
   return seed;
 }
 
+Correspondences ScanMatcher::find_pairs(const WorldMap& map, const ScanPoints& moving,
+                                        std::vector<Neighbour>& nearest, bool refining) const {
+  Correspondences pairs =
+      find_nearest_points(map, moving, config_.max_correspondence_distance, nearest);
+  if (refining && config_.refine_lines_only) drop_pairs_without_normal(pairs);
+  return pairs;
+}
+
 // Up to `count` iterations of find nearest points -> best correction -> apply, until a step is
 // below stop_step; false when the correction grows beyond the seed's limits (result.outcome says
 // which) or no pair is left.
@@ -112,7 +144,7 @@ bool ScanMatcher::iterate(const WorldMap& map, const Vec3& initial, bool estimat
                           MatchResult& result) const {
   for (int k = 0; k < count; ++k) {
     if (result.iterations > 0) {
-      pairs = find_nearest_points(map, moving, config_.max_correspondence_distance, nearest);
+      pairs = find_pairs(map, moving, nearest, robust_scale > 0.0);
     }
     if (pairs.empty()) return false;
     const Vec3 body = initial + result.correction;
@@ -145,14 +177,17 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, cons
   result.position = initial;
   ScanPoints moving = scan;
   apply_transform(moving.points, initial);
-  const double max_distance = config_.max_correspondence_distance;
 
   // Find initial error: the pairs found here also serve the first iteration.
   std::vector<Neighbour> own_nearest;
   std::vector<Neighbour>& nearest = warm_start ? *warm_start : own_nearest;
-  Correspondences pairs = find_nearest_points(map, moving, max_distance, nearest);
+  Correspondences pairs = find_pairs(map, moving, nearest, false);
   if (pairs.empty()) return result;
-  result.error_before = error_function(pairs);
+  // The error before and after over the same kind of pairs (those the refinement keeps).
+  Correspondences measured = pairs;
+  if (config_.refine_lines_only) drop_pairs_without_normal(measured);
+  if (measured.empty()) return result;
+  result.error_before = error_function(measured);
 
   // The ICP (every pair in the gate counts fully), then, with a robust scale, the refinement:
   // the converged scan settles on the pairs that agree with it (PlanarCorrection's Cauchy
@@ -170,7 +205,7 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, cons
   result.position = initial + result.correction;
 
   // Calculate resultant error.
-  pairs = find_nearest_points(map, moving, max_distance, nearest);
+  pairs = find_pairs(map, moving, nearest, true);
   if (pairs.empty()) return result;
   result.error_after = error_function(pairs);
   result.correspondences = pairs.scan.size();

@@ -40,6 +40,16 @@ Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
 Correspondences find_nearest_points(const WorldMap& map, const ScanPoints& scan,
                                     double max_distance);
 
+// Beyond the seed (icp.refine_lines_only): with the point-to-line metric, a pair whose map point
+// has no wall normal counts nothing horizontally (its x-y weights zeroed; a pair left with no
+// weight at all is dropped). Such map points are a far wall's seen at a grazing angle, farther
+// apart than the normals' gap, and corners. Counted point to point, the offset to the nearest of
+// them is where the map's points happen to lie, up to half their spacing (in a map of every 5th
+// point, the seed's, 5-10 cm at 10-30 m), and not random: a vehicle moving along a wall meets the
+// same pattern scan after scan, and the match turns by it keyframe after keyframe
+// (docs/algorithm.md).
+void drop_pairs_without_normal(Correspondences& pairs);
+
 // Step 2, eq. 5.16 per axis k: t_k = sum_i w_ik (m_ik - d_ik) / sum_i w_ik, the weighted
 // difference of the means c_m - c_d; 0 on an axis no pair informs. It minimises E(t).
 Vec3 best_translation(const Correspondences& pairs);
@@ -80,6 +90,10 @@ class ScanMatcher {
 
  private:
   bool converged(const PlanarCorrection& step) const;
+  // Step 1: find_nearest_points; while refining (and for the match's final pairs) without those
+  // icp.refine_lines_only leaves out.
+  Correspondences find_pairs(const WorldMap& map, const ScanPoints& moving,
+                             std::vector<Neighbour>& nearest, bool refining) const;
   // One ICP step from the pairs: the correction to apply to the moving scan.
   PlanarCorrection step(const Correspondences& pairs, const Vec3& body, bool estimate_yaw,
                         const PlanarCorrection& so_far, double robust_scale) const;

@@ -133,6 +133,10 @@ struct SlamConfig {
     // agree with it (0 = no refinement).
     double robust_scale = 0.0;
     int refine_iterations = 5;
+    // Point-to-line: the refinement, and the error and pairs the match reports, leave out the
+    // pairs whose map point has no wall normal (drop_pairs_without_normal); false: they count
+    // point to point throughout.
+    bool refine_lines_only = false;
     // m (and rad); stop the ICP early once a step is smaller (0 = never: the seed's fixed count).
     double stop_step = 0.0;
     // Beyond the seed: a match whose position differs from the motion prior's prediction, in the

@@ -105,6 +105,8 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.prior_weight = v.as_double(NumberRange::non_negative());
        }},
+      {"icp", "refine_lines_only",
+       [](SlamConfig& c, const YamlReader& v) { c.icp.refine_lines_only = v.as_bool(); }},
       {"icp", "robust_scale",
        [](SlamConfig& c, const YamlReader& v) {
          c.icp.robust_scale = v.as_double(NumberRange::non_negative());

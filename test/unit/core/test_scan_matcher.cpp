@@ -68,6 +68,64 @@ TEST(ScanMatcher, FindNearestPointsLeavesOutDistantPairsWhenAsked) {
   EXPECT_TRUE(near.map[0].isZero());
 }
 
+// Pairs whose map point has no wall normal count nothing across the wall (their x-y weights);
+// one left with no weight at all is dropped, a floor beam's pair (z only) is kept.
+TEST(ScanMatcher, APairWithoutAWallNormalCountsNothingHorizontally) {
+  Correspondences pairs;
+  const std::vector<Vec3> weights = {Vec3(1, 1, 0), Vec3(1, 1, 0), Vec3(0, 0, 1), Vec3(1, 1, 1)};
+  const std::vector<Vec3> normals = {Vec3::UnitY(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    pairs.scan.emplace_back(double(i), 0.0, 0.0);
+    pairs.map.emplace_back(double(i), 0.1, 0.0);
+    pairs.map_index.push_back(i);
+    pairs.weights.push_back(weights[i]);
+    pairs.normals.push_back(normals[i]);
+  }
+  drop_pairs_without_normal(pairs);
+  ASSERT_EQ(pairs.scan.size(), 3u);
+  EXPECT_EQ(pairs.map_index, (std::vector<std::size_t>{0, 2, 3}));
+  EXPECT_EQ(pairs.weights[0], Vec3(1, 1, 0));
+  EXPECT_EQ(pairs.weights[1], Vec3(0, 0, 1));
+  EXPECT_EQ(pairs.weights[2], Vec3(0, 0, 1));
+  EXPECT_EQ(pairs.normals.size(), 3u);
+}
+
+// A corner: one wall mapped with its normal, the other's map points without (seen too sparsely
+// for a line), the scan's points on it 4 cm along from them. Counted point to point, those
+// offsets pull the match along the second wall, across the first; refined on the lines alone, the
+// first wall places the match where it is (the ICP before still counts them all).
+TEST(ScanMatcher, TheRefinementOnTheLinesIsNotPulledAlongAWallByItsPoints) {
+  Points map_points;
+  std::vector<Vec3> map_normals;
+  for (double x = 0.5; x <= 5.0; x += 0.05) {
+    map_points.emplace_back(x, 0.0, 0.0);
+    map_normals.push_back(Vec3::UnitY());
+  }
+  for (double y = 0.5; y <= 5.0; y += 0.2) {
+    map_points.emplace_back(0.0, y, 0.0);
+    map_normals.push_back(Vec3::Zero());
+  }
+  WorldMap map = exact_map({});
+  map.add_points(map_points, map_normals);
+  Points scan_points;
+  for (double x = 0.525; x <= 5.0; x += 0.1) scan_points.emplace_back(x, 0.0, 0.0);
+  for (double y = 0.54; y <= 5.0; y += 0.2) scan_points.emplace_back(0.0, y, 0.0);
+  const ScanPoints scan =
+      weigh_points(scan_points, std::vector<bool>(scan_points.size(), false), true);
+  SlamConfig::Icp icp;
+  icp.metric = IcpMetric::PointToLine;
+  icp.max_correspondence_distance = 0.3;
+  icp.robust_scale = 0.03;
+  icp.refine_iterations = 5;
+  const MatchResult counted = ScanMatcher(icp).match(map, scan, Vec3::Zero());
+  icp.refine_lines_only = true;
+  const MatchResult refined = ScanMatcher(icp).match(map, scan, Vec3::Zero());
+  ASSERT_EQ(counted.outcome, ScanOutcome::Accepted) << to_string(counted.outcome);
+  ASSERT_EQ(refined.outcome, ScanOutcome::Accepted) << to_string(refined.outcome);
+  EXPECT_GT(std::abs(counted.position.y()), 0.005) << counted.position.transpose();
+  EXPECT_LT(std::abs(refined.position.y()), 1e-6) << refined.position.transpose();
+}
+
 class MatchInRoom : public ::testing::Test {
  protected:
   test::SyntheticRoom room;
