@@ -180,7 +180,7 @@ void SlamPipeline::height_from_floor(ScanReport& report, const ProjectedScan& pr
   if (!fix) return;
   // Without a covariance (degeneracy off) the match's height states no spread: the fix's stands.
   HeightFix fused = *fix;
-  const double chained = covariance_(2, 2) + map_error_.covariance(2, 2);
+  const double chained = covariance_(2, 2) + map_error_.covariance()(2, 2);
   if (chained > 0.0) {
     fused.variance = 1.0 / (1.0 / chained + 1.0 / fix->variance);
     fused.height = fused.variance * (pose_.position.z() / chained + fix->height / fix->variance);
@@ -189,8 +189,7 @@ void SlamPipeline::height_from_floor(ScanReport& report, const ProjectedScan& pr
   covariance_.row(2).setZero();
   covariance_.col(2).setZero();
   covariance_(2, 2) = fused.variance;
-  map_error_.covariance.row(2).setZero();
-  map_error_.covariance.col(2).setZero();
+  map_error_.error.forget(2);
   map_error_.drift(2) = 0.0;
   map_error_.applied(2) = 0.0;
   report.covariance = covariance_;
@@ -320,8 +319,8 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
 // in the directions the scan fixed. A blind direction keeps what it had: there the position is
 // the prior's, carried from the last fixes, and the prior's covariance is relative to the map
 // those fixes were made against (the inertial filter takes map-relative fixes), so the map's
-// uncertainty at them still stands under it:
-//   Sigma_map = T Sigma_pairs T^T + B Sigma_map,last B^T,   T = diag(P, 1), B = diag(I - P, 0)
+// error at them still stands under it:
+//   e_map = T e_pairs + B e_map,last,   T = diag(P, 1), B = diag(I - P, 0)
 // and the drift's terms likewise: a = T a_pairs + B a_last, h = T h_pairs + B h_last.
 MapError SlamPipeline::map_part(const ScanReport& report, const MatchResult& match) const {
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
@@ -331,32 +330,33 @@ MapError SlamPipeline::map_part(const ScanReport& report, const MatchResult& mat
   const MapError pairs =
       map_uncertainty_.of_match(match.pairs, match.position, heading_drift_terms());
   MapError error;
-  error.covariance =
-      T * pairs.covariance * T.transpose() + B * map_error_.covariance * B.transpose();
+  error.error.add(T, pairs.error);
+  error.error.add(B, map_error_.error);
+  error.error.prune(MapUncertainty::kSourcesKept);
   error.drift = T * pairs.drift + B * map_error_.drift;
   error.applied = T * pairs.applied + B * map_error_.applied;
   return error;
 }
 
-// The covariance over (x, y, z, yaw) a keyframe joins the map with: the map's where the scan
-// matched plus the match's own. The heading's: taken from the source as it is (the seed), the
-// source's, imu.heading_sigma, and not the map's; estimated in every scan, the map's plus the
-// match's own (the yaw's variance with the translation estimated beside it, scaled as MatchNoise
-// scales the match's: without it each keyframe's heading was as sure as the map's, and a flight's
-// NEES averaged 9.7 on the demo); checked against the map (icp.heading: periodic_check), the
-// source's drift not followed, which keyframe_drift() carries apart.
-Eigen::Matrix4d SlamPipeline::keyframe_covariance(const ScanReport& report) const {
-  Eigen::Matrix4d covariance = map_error_.covariance;
-  covariance.topLeftCorner<3, 3>() += report.covariance;
+// What a keyframe joins the map with, over (x, y, z, yaw): the map's error where the scan matched
+// (inherited, shared with the keyframes it came from) and the match's own noise. The heading's:
+// taken from the source as it is (the seed), the source's, imu.heading_sigma, and not the map's;
+// estimated in every scan, the map's plus the match's own (the yaw's variance with the translation
+// estimated beside it, scaled as MatchNoise scales the match's: without it each keyframe's heading
+// was as sure as the map's, and a flight's NEES averaged 9.7 on the demo); checked against the map
+// (icp.heading: periodic_check), the map's, the source's drift not followed, which
+// keyframe_drift() carries apart.
+SlamPipeline::KeyframeError SlamPipeline::keyframe_error(const ScanReport& report) const {
+  KeyframeError error{map_error_.error, Eigen::Matrix4d::Zero()};
+  error.own.topLeftCorner<3, 3>() = report.covariance;
   if (config_.icp.heading == HeadingMode::Source) {
-    covariance.row(3).setZero();
-    covariance.col(3).setZero();
-    covariance(3, 3) = config_.imu.heading_sigma * config_.imu.heading_sigma;
+    error.inherited.forget(3);
+    error.own(3, 3) = config_.imu.heading_sigma * config_.imu.heading_sigma;
   }
   if (config_.icp.heading == HeadingMode::EveryScan) {
-    covariance(3, 3) += match_noise_.horizontal_scale() * report.seen.yaw_variance;
+    error.own(3, 3) = match_noise_.horizontal_scale() * report.seen.yaw_variance;
   }
-  return covariance;
+  return error;
 }
 
 // The drift terms of the heading the vehicle has now (MapError): the time since the first
@@ -492,8 +492,9 @@ void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected
     normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
   }
   const auto [drift, applied] = keyframe_drift();
-  map_uncertainty_.add_keyframe(map_.size(), pose_.position, keyframe_covariance(report), drift,
-                                applied);
+  const KeyframeError error = keyframe_error(report);
+  map_uncertainty_.add_keyframe(map_.size(), pose_.position, error.own, drift, applied,
+                                error.inherited);
   keyframe_stamps_.push_back(pose_.stamp);
   keyframe_headings_.push_back(heading_correction_);
   report.added_points = map_.add_points(aligned, normals);

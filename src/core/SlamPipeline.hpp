@@ -164,7 +164,11 @@ class SlamPipeline {
                         ScanReport& report) const;
   ScanPoints scan_points(const ProjectedScan& projected) const;
   MapError map_part(const ScanReport& report, const MatchResult& match) const;
-  Eigen::Matrix4d keyframe_covariance(const ScanReport& report) const;
+  struct KeyframeError {
+    CorrelatedError inherited;  // the map's, where the scan matched
+    Eigen::Matrix4d own;        // the match's own noise's covariance
+  };
+  KeyframeError keyframe_error(const ScanReport& report) const;
   Eigen::Vector2d heading_drift_terms() const;
   std::pair<Eigen::Vector4d, Eigen::Vector4d> keyframe_drift() const;
   Eigen::Matrix4d map_total() const;

@@ -243,12 +243,12 @@ TEST_F(UavslamCli, TheAutopilotsVelocityCarriesTheCorridorThatABiasedImuLoses) {
 // monte_carlo.sh; docs/algorithm.md). Measured as found, with the point pairs counted in the
 // refinement: the refinement on the lines (icp.refine_lines_only) keeps most strikes out of the
 // match too, and seeds 1-4 then no longer show it (16 seeds still do: 0.113 m mean kept, one
-// flight 1.15 m off, against 0.009 m).
+// flight 1.15 m off, against 0.009 m). Issue 17's NEES is checked on the shipped config.
 TEST_F(UavslamCli, AFastFlightsFloorStrikesAreSetAside) {
   constexpr int kSeeds = 4;
   double set_aside_ate = 0.0;
   double kept_ate = 0.0;
-  double set_aside_nees = 0.0;
+  double shipped_nees = 0.0;
   for (int seed = 1; seed <= kSeeds; ++seed) {
     const std::string options =
         "--seed " + std::to_string(seed) + " --set icp.refine_lines_only=false";
@@ -257,9 +257,11 @@ TEST_F(UavslamCli, AFastFlightsFloorStrikesAreSetAside) {
     const nlohmann::json kept =
         simulate(dir / ("kept" + std::to_string(seed)), "agile", "config/slam.yaml",
                  options + " --set scan.floor_margin=0");
+    const nlohmann::json shipped = simulate(dir / ("shipped" + std::to_string(seed)), "agile",
+                                            "config/slam.yaml", "--seed " + std::to_string(seed));
     set_aside_ate += ate_horizontal(set_aside) / kSeeds;
     kept_ate += ate_horizontal(kept) / kSeeds;
-    set_aside_nees += set_aside.at("consistency").at("nees_mean").get<double>() / kSeeds;
+    shipped_nees += shipped.at("consistency").at("nees_mean").get<double>() / kSeeds;
     // scans.csv counts each scan's floor strikes: hundreds of scans have some.
     std::ifstream csv(out / "scans.csv");
     std::string line;
@@ -276,8 +278,8 @@ TEST_F(UavslamCli, AFastFlightsFloorStrikesAreSetAside) {
   }
   EXPECT_LE(set_aside_ate, 0.06);
   EXPECT_GT(kept_ate, 0.2);
-  EXPECT_GE(set_aside_nees, 1.5);
-  EXPECT_LE(set_aside_nees, 6.0);
+  EXPECT_GE(shipped_nees, 1.5);
+  EXPECT_LE(shipped_nees, 6.0);
 }
 
 // The agile flight's take-off tilts the scanner to 15 degrees: its cut of the room is then not the

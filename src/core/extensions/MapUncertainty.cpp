@@ -5,18 +5,12 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "core/extensions/ScanInformation.hpp"
 
 namespace uavslam {
 namespace {
-
-// The symmetric square root of a covariance (its negative rounding errors taken as zero).
-Eigen::Matrix4d square_root(const Eigen::Matrix4d& covariance) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> solver(covariance);
-  const Eigen::Vector4d roots = solver.eigenvalues().cwiseMax(0.0).cwiseSqrt();
-  return solver.eigenvectors() * roots.asDiagonal() * solver.eigenvectors().transpose();
-}
 
 // H^-1 over the directions the pairs hold information in (H^+: a blind direction gets no weight).
 Eigen::Matrix3d pseudo_inverse(const Eigen::Matrix3d& information) {
@@ -37,11 +31,15 @@ Vec3 perp(const Vec3& v) {
 }  // namespace
 
 void MapUncertainty::add_keyframe(std::size_t first_point, const Vec3& position,
-                                  const Eigen::Matrix4d& covariance, const Eigen::Vector4d& drift,
-                                  const Eigen::Vector4d& applied) {
+                                  const Eigen::Matrix4d& own_covariance,
+                                  const Eigen::Vector4d& drift, const Eigen::Vector4d& applied,
+                                  const CorrelatedError& inherited) {
+  CorrelatedError error = inherited;
+  error.add_noise(first_points_.size(), own_covariance);
+  error.prune(kSourcesKept);
+  errors_.push_back(std::move(error));
   first_points_.push_back(first_point);
   positions_.push_back(position);
-  roots_.push_back(square_root(covariance));
   drifts_.push_back(drift);
   applied_.push_back(applied);
 }
@@ -93,19 +91,18 @@ MapError MapUncertainty::of_match(const Correspondences& pairs, const Vec3& posi
   if (grouped.keyframes.empty()) return error;
   const double horizontal = grouped.total.topLeftCorner<2, 2>().trace();
   const Eigen::Matrix3d inverse = pseudo_inverse(grouped.total);
-  Eigen::Matrix4d L = Eigen::Matrix4d::Zero();
   Vec3 lever = Vec3::Zero();  // sum_i H_i perp(d_i - p)
   for (const auto& [k, own] : grouped.keyframes) {
     Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
     A.topLeftCorner<3, 3>() = inverse * own.information;
     A.topRightCorner<3, 1>() = inverse * own.turn;
     A(3, 3) = horizontal > 0.0 ? own.information.topLeftCorner<2, 2>().trace() / horizontal : 0.0;
-    L += A * roots_[k];
+    error.error.add(A, errors_[k]);
     error.drift += A * drifts_[k];
     error.applied += A * applied_[k];
     lever += own.turn + own.information * perp(positions_[k] - position);
   }
-  error.covariance = L * L.transpose();
+  error.error.prune(kSourcesKept);
   // The scan's own heading error turns its points about the vehicle: the match moves by -g eps.
   const Vec3 g = inverse * lever;
   error.drift.head<3>() -= g * scan_drift(0);

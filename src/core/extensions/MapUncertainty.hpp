@@ -9,17 +9,18 @@
 //   W_k e_k + g_k eps_k,   W_k = H^-1 H_k,   g_k = H^-1 sum_{i in k} H_i perp(d_i - p_k)
 // (H_i: pair i's information, H_k the sum over k's pairs, H over all; the W_k sum to I), and the
 // heading the map holds there is the keyframes' own, weighted by their share s_k of the
-// horizontal information. Keyframes on one exploration chain share most of their error, so they
-// are taken as fully correlated, each with its covariance's square root S_k:
-//   Sigma_map = L L^T,   L = sum_k A_k S_k,   A_k = [W_k g_k; 0 s_k]
-// One keyframe gives its own covariance; a door edge seen only in a drifted keyframe gives that
-// keyframe's along the corridor, however many wall pairs the anchor holds; a keyframe whose
-// heading is uncertain gives a far match the lever arm's share of it (a map turned by eps about
-// the take-off is off by eps x the distance from it). The first keyframe anchors the map's frame
-// (zero). Exploring, a keyframe pairs with the last few and the covariance grows like a random
-// walk; back in a known place the old keyframes' smaller one returns. It is the spanning tree of
-// a pose graph's marginals (Olson's Dijkstra projection), without the loop edges that only a back
-// end adds.
+// horizontal information. Each keyframe's error is kept as the noises it came from
+// (CorrelatedError: e_k = sum_j C_kj nu_j, its match's map part and its own match's noise), so
+//   e = sum_k A_k e_k,   A_k = [W_k g_k; 0 s_k],   Sigma_map = Cov(e)
+// shares exactly what the keyframes share: their common ancestry stays whole, their own noises
+// average down. One keyframe gives its own covariance; a door edge seen only in a drifted keyframe
+// gives that keyframe's along the corridor, however many wall pairs the anchor holds; a keyframe
+// whose heading is uncertain gives a far match the lever arm's share of it (a map turned by eps
+// about the take-off is off by eps x the distance from it). The first keyframe anchors the map's
+// frame (zero). Exploring, a keyframe pairs with the last few and the covariance grows like a
+// random walk; back in a known place the old keyframes' smaller one returns. It is the spanning
+// tree of a pose graph's marginals (Olson's Dijkstra projection), without the loop edges that only
+// a back end adds.
 #pragma once
 
 #include <cstddef>
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "core/Correspondences.hpp"
+#include "core/extensions/CorrelatedError.hpp"
 
 namespace uavslam {
 
@@ -40,26 +42,34 @@ namespace uavslam {
 // checks know it (HeadingRate::Estimate), and only when the total is wanted: as the checks pin
 // it down, the whole map is surer, its early keyframes and the positions they turned too.
 struct MapError {
-  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+  CorrelatedError error;                              // e above
   Eigen::Vector4d drift = Eigen::Vector4d::Zero();    // a
   Eigen::Vector4d applied = Eigen::Vector4d::Zero();  // h
+  Eigen::Matrix4d covariance() const { return error.covariance(); }
   // The whole covariance, given the rate r and its error's variance:
   //   Sigma + (a r - h)(a r - h)^T + var(r) a a^T
   Eigen::Matrix4d total(double rate, double rate_variance) const {
     const Eigen::Vector4d known = drift * rate - applied;
-    return covariance + known * known.transpose() + rate_variance * drift * drift.transpose();
+    return covariance() + known * known.transpose() + rate_variance * drift * drift.transpose();
   }
 };
 
 class MapUncertainty {
  public:
+  // The noises an error keeps apart (CorrelatedError::prune): a room's worth of keyframes; 64
+  // sources of 4 x 4 are 8 KB a keyframe.
+  static constexpr std::size_t kSourcesKept = 64;
+
   // The keyframe whose points start at map index first_point, taken at body position `position`,
-  // its pose's covariance over (x, y, z, yaw) (m^2, rad^2), and its drift's terms a and h
-  // (MapError; zero where the heading's drift is not modelled).
+  // its own match's covariance over (x, y, z, yaw) (m^2, rad^2; a new noise, source k), its drift's
+  // terms a and h (MapError; zero where the heading's drift is not modelled), and the error it
+  // inherited from the map it matched (of_match's; none for the first, or a keyframe taken as
+  // independent of the others).
   void add_keyframe(std::size_t first_point, const Vec3& position,
-                    const Eigen::Matrix4d& covariance,
+                    const Eigen::Matrix4d& own_covariance,
                     const Eigen::Vector4d& drift = Eigen::Vector4d::Zero(),
-                    const Eigen::Vector4d& applied = Eigen::Vector4d::Zero());
+                    const Eigen::Vector4d& applied = Eigen::Vector4d::Zero(),
+                    const CorrelatedError& inherited = {});
   // Keyframe k was turned by `turn` (rad) to where the drift's rate r puts it (HeadingRate::
   // turns): its correction grows by it, and its position, placed again on the turned map, carries
   // the drift as the rate says (h = a r there).
@@ -105,7 +115,7 @@ class MapUncertainty {
 
   std::vector<std::size_t> first_points_;  // ascending
   std::vector<Vec3> positions_;            // p_k
-  std::vector<Eigen::Matrix4d> roots_;     // S_k: the covariances' symmetric square roots
+  std::vector<CorrelatedError> errors_;    // e_k
   std::vector<Eigen::Vector4d> drifts_;    // a_k
   std::vector<Eigen::Vector4d> applied_;   // h_k
 };

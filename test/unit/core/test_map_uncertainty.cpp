@@ -43,7 +43,7 @@ struct Pairs {
 
 // The covariance a match inherits, from keyframes whose heading's drift is not modelled.
 Eigen::Matrix4d covariance_of(const MapUncertainty& map, const Correspondences& pairs) {
-  return map.of_match(pairs, Vec3::Zero()).covariance;
+  return map.of_match(pairs, Vec3::Zero()).covariance();
 }
 
 MapUncertainty three_keyframes() {
@@ -82,15 +82,23 @@ TEST(MapUncertainty, EachKeyframeCountsInTheDirectionsItsPairsFixed) {
   EXPECT_NEAR(covariance(2, 2), 0.0, 1e-9);
 }
 
-// Keyframes on one chain share their error: two that fix the same direction equally give the
-// square of the mean of their standard deviations, ((0 + 2) / 2)^2, not the mean of the variances
-// halved again as independent ones would.
-TEST(MapUncertainty, KeyframesThatFixTheSameDirectionAreTakenAsOneError) {
-  const MapUncertainty map = three_keyframes();
-  const Eigen::Matrix4d covariance =
-      covariance_of(map, Pairs{}.wall(1, Vec3::UnitX()).wall(101, Vec3::UnitX()).pairs);
-  EXPECT_NEAR(covariance(0, 0), 1.0, 1e-9);
-  EXPECT_NEAR(covariance(1, 1), 0.0, 1e-9);
+// Keyframes share their error as far as they share its sources. Two independent ones that fix the
+// same direction equally average their noises: (4 + 1) / 4. A keyframe that matched on another
+// carries that one's error whole, plus its own: a match on both, e_1 + n_2 / 2, has 4 + 1 / 4.
+TEST(MapUncertainty, KeyframesShareTheErrorsTheyCameFrom) {
+  const MapUncertainty independent = three_keyframes();
+  const Correspondences both = Pairs{}.wall(101, Vec3::UnitX()).wall(151, Vec3::UnitX()).pairs;
+  EXPECT_NEAR(covariance_of(independent, both)(0, 0), 1.25, 1e-9);
+  EXPECT_NEAR(covariance_of(independent, both)(1, 1), 0.0, 1e-9);
+
+  MapUncertainty chain;
+  chain.add_keyframe(0, Vec3::Zero(), isotropic(0.0));
+  chain.add_keyframe(100, Vec3::Zero(), isotropic(4.0));
+  const MapError matched = chain.of_match(Pairs{}.wall(120, Vec3::UnitX()).pairs, Vec3::Zero());
+  chain.add_keyframe(150, Vec3::Zero(), isotropic(1.0), Eigen::Vector4d::Zero(),
+                     Eigen::Vector4d::Zero(), matched.error);
+  EXPECT_NEAR(covariance_of(chain, Pairs{}.wall(151, Vec3::UnitX()).pairs)(0, 0), 5.0, 1e-9);
+  EXPECT_NEAR(covariance_of(chain, both)(0, 0), 4.25, 1e-9);
 }
 
 // Each keyframe's weight in the heading the map holds where the pairs are: its share of their
@@ -153,7 +161,7 @@ TEST(MapUncertainty, AScanTurnedAsItsMapIsMatchesWhereAWorldTurnedAsAWholePutsIt
   const Correspondences pairs = walls_around_ten_metres_east();
   const MapError unturned = map.of_match(pairs, Vec3::Zero());
   EXPECT_TRUE(unturned.drift.isApprox(Eigen::Vector4d(0.0, 100.0, 0.0, 10.0)));
-  EXPECT_TRUE(unturned.covariance.isZero());
+  EXPECT_TRUE(unturned.covariance().isZero());
   const MapError turned = map.of_match(pairs, Vec3::Zero(), Eigen::Vector2d(10.0, 0.0));
   EXPECT_NEAR(turned.drift.head<3>().norm(), 0.0, 1e-9);
   // Matched 10 m east, among the points: the world turned about the first keyframe moves the
