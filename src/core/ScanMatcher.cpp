@@ -183,11 +183,15 @@ MatchResult ScanMatcher::match(const WorldMap& map, const ScanPoints& scan, cons
   std::vector<Neighbour>& nearest = warm_start ? *warm_start : own_nearest;
   Correspondences pairs = find_pairs(map, moving, nearest, false);
   if (pairs.empty()) return result;
-  // The error before and after over the same kind of pairs (those the refinement keeps).
-  Correspondences measured = pairs;
-  if (config_.refine_lines_only) drop_pairs_without_normal(measured);
-  if (measured.empty()) return result;
-  result.error_before = error_function(measured);
+  if (config_.refine_lines_only) {
+    // The error before and after over the same kind of pairs (those the refinement keeps).
+    Correspondences lines = pairs;
+    drop_pairs_without_normal(lines);
+    if (lines.empty()) return result;
+    result.error_before = error_function(lines);
+  } else {
+    result.error_before = error_function(pairs);
+  }
 
   // The ICP (every pair in the gate counts fully), then, with a robust scale, the refinement:
   // the converged scan settles on the pairs that agree with it (PlanarCorrection's Cauchy
