@@ -290,6 +290,12 @@ ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected) const {
   return points;
 }
 
+// The match turned the scan as well as moving it: heading estimated in every scan, or a check
+// that found the heading off.
+bool SlamPipeline::yaw_estimated(const MatchResult& match) const {
+  return config_.icp.heading == HeadingMode::EveryScan || match.yaw != 0.0;
+}
+
 // Beyond the seed: where the scan is blind (a corridor's axis), the match only held the start, so
 // the position along those directions stays as the motion prior predicted it:
 //   p = p_start + P (p_match - p_start)   (P: projection onto the directions the scan fixes)
@@ -304,14 +310,20 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
                                           const Pose& start, const Eigen::Matrix3d& prior,
                                           const ScanGeometry& sensor) {
   if (config_.degeneracy.threshold <= 0.0) return match.position;
-  const bool with_yaw = config_.icp.heading == HeadingMode::EveryScan || match.yaw != 0.0;
   const bool measures_height = config_.icp.split_axes && sensor.has_vertical_beams();
-  report.seen = observability(
-      scan_information(match.pairs, match.position, with_yaw, config_.degeneracy.min_sigma),
-      config_.degeneracy.threshold, measures_height);
+  report.seen = observability(scan_information(match.pairs, match.position, yaw_estimated(match),
+                                               config_.degeneracy.min_sigma),
+                              config_.degeneracy.threshold, measures_height);
   const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - report.seen.observed;
   report.covariance =
       match_noise_.scaled(report.seen.covariance) + blind * prior * blind.transpose();
+  // A scan that sees every direction ends a blind stretch; the next blind one starts another.
+  if (report.seen.degenerate == 0) {
+    in_blind_stretch_ = false;
+  } else if (!in_blind_stretch_) {
+    in_blind_stretch_ = true;
+    ++blind_stretches_;
+  }
   return start.position + report.seen.observed * (match.position - start.position);
 }
 
@@ -327,8 +339,8 @@ MapError SlamPipeline::map_part(const ScanReport& report, const MatchResult& mat
   T.topLeftCorner<3, 3>() = report.seen.observed;
   Eigen::Matrix4d B = Eigen::Matrix4d::Zero();
   B.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() - report.seen.observed;
-  const MapError pairs =
-      map_uncertainty_.of_match(match.pairs, match.position, heading_drift_terms());
+  const MapError pairs = map_uncertainty_.of_match(match.pairs, match.position,
+                                                   heading_drift_terms(), yaw_estimated(match));
   MapError error;
   error.error.add(T, pairs.error);
   error.error.add(B, map_error_.error);
@@ -349,6 +361,16 @@ MapError SlamPipeline::map_part(const ScanReport& report, const MatchResult& mat
 SlamPipeline::KeyframeError SlamPipeline::keyframe_error(const ScanReport& report) const {
   KeyframeError error{map_error_.error, Eigen::Matrix4d::Zero()};
   error.own.topLeftCorner<3, 3>() = report.covariance;
+  // Along the directions the scan left blind the position is the motion prior's, whose error the
+  // keyframes carried through one blind stretch share (CorrelatedError::carried): as fresh noises,
+  // their differences along a corridor's axis turned the matches on them.
+  const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - report.seen.observed;
+  Eigen::Matrix4d carried = Eigen::Matrix4d::Zero();
+  carried.topLeftCorner<3, 3>() = blind * report.covariance * blind.transpose();
+  if (!carried.isZero()) {
+    error.own -= carried;
+    error.inherited.add_noise(CorrelatedError::carried(blind_stretches_), carried);
+  }
   if (config_.icp.heading == HeadingMode::Source) {
     error.inherited.forget(3);
     error.own(3, 3) = config_.imu.heading_sigma * config_.imu.heading_sigma;

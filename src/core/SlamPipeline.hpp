@@ -191,6 +191,7 @@ class SlamPipeline {
                                                    const MatchResult& match, const Pose& start,
                                                    const MotionPrediction& prediction,
                                                    const Eigen::Matrix3d& prior) const;
+  bool yaw_estimated(const MatchResult& match) const;
   Vec3 keep_what_the_scan_saw(ScanReport& report, const MatchResult& match, const Pose& start,
                               const Eigen::Matrix3d& prior, const ScanGeometry& sensor);
 
@@ -209,6 +210,8 @@ class SlamPipeline {
   MatchNoise match_noise_;
   PriorGate gate_;
   MapUncertainty map_uncertainty_;
+  std::size_t blind_stretches_ = 0;  // blind stretches begun (CorrelatedError::carried)
+  bool in_blind_stretch_ = false;
   MapError map_error_;  // the last match's, (x, y, z, yaw)
   HeadingRate heading_rate_;
   HeadingAnchor heading_anchor_;

@@ -23,6 +23,11 @@ class CorrelatedError {
  public:
   // The source the pruned noises of every error are folded into.
   static constexpr std::size_t kCommon = std::numeric_limits<std::size_t>::max();
+  // The source of the motion prior's error along the directions the scans left blind (a
+  // corridor's axis) over the `stretch`-th blind stretch: the positions the prior carried through
+  // one stretch err together (the same integrated velocity and bias), not by a fresh noise at
+  // each keyframe; the next fix ends it. Counted down from kCommon, clear of the keyframes'.
+  static constexpr std::size_t carried(std::size_t stretch) { return kCommon - 1 - stretch; }
 
   // Adds an independent noise of this covariance as source `source` (C = its symmetric root).
   void add_noise(std::size_t source, const Eigen::Matrix4d& covariance);

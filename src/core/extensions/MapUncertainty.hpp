@@ -13,14 +13,16 @@
 // (CorrelatedError: e_k = sum_j C_kj nu_j, its match's map part and its own match's noise), so
 //   e = sum_k A_k e_k,   A_k = [W_k g_k; 0 s_k],   Sigma_map = Cov(e)
 // shares exactly what the keyframes share: their common ancestry stays whole, their own noises
-// average down. One keyframe gives its own covariance; a door edge seen only in a drifted keyframe
-// gives that keyframe's along the corridor, however many wall pairs the anchor holds; a keyframe
-// whose heading is uncertain gives a far match the lever arm's share of it (a map turned by eps
-// about the take-off is off by eps x the distance from it). The first keyframe anchors the map's
-// frame (zero). Exploring, a keyframe pairs with the last few and the covariance grows like a
-// random walk; back in a known place the old keyframes' smaller one returns. It is the spanning
-// tree of a pose graph's marginals (Olson's Dijkstra projection), without the loop edges that only
-// a back end adds.
+// average down. That is for a match of the translation only; one that turns the scan too takes a
+// keyframe's turn about the vehicle as its own heading and keeps the shift e_k + eps_k perp(p -
+// p_k), the lever arm to the vehicle, not to the walls (of_match's with_yaw). One keyframe gives
+// its own covariance; a door edge seen only in a drifted keyframe gives that keyframe's along the
+// corridor, however many wall pairs the anchor holds; a keyframe whose heading is uncertain gives a
+// far match the lever arm's share of it (a map turned by eps about the take-off is off by eps x the
+// distance from it). The first keyframe anchors the map's frame (zero). Exploring, a keyframe pairs
+// with the last few and the covariance grows like a random walk; back in a known place the old
+// keyframes' smaller one returns. It is the spanning tree of a pose graph's marginals (Olson's
+// Dijkstra projection), without the loop edges that only a back end adds.
 #pragma once
 
 #include <cstddef>
@@ -92,23 +94,35 @@ class MapUncertainty {
   // `position`: where the scan matched; scan_drift: the scan's own drift terms (its heading's a
   // and h: a scan turned by eps about the vehicle moves the match by -g eps, g = H^-1 sum_i H_i
   // perp(d_i - p), so a scan turned as its map is matches where a turned world would put it).
+  // with_yaw: the match estimated its heading too (joint_match in the .cpp: a keyframe's turn
+  // reaches it by the lever arm from that keyframe to the vehicle, and its yaw inherits the
+  // keyframes' headings by their information); else its translation only, as above.
   MapError of_match(const Correspondences& pairs, const Vec3& position,
-                    const Eigen::Vector2d& scan_drift = Eigen::Vector2d::Zero()) const;
+                    const Eigen::Vector2d& scan_drift = Eigen::Vector2d::Zero(),
+                    bool with_yaw = false) const;
   // s_k above: each keyframe's share of the pairs' horizontal information, the weight its heading
   // has in the heading the map holds where the pairs are (keyframes with none left out).
   std::vector<std::pair<std::size_t, double>> heading_shares(const Correspondences& pairs) const;
 
  private:
-  // What one keyframe's pairs hold of a match: H_k and sum_i H_i perp(d_i - p_k).
+  // What one keyframe's pairs hold of a match: H_k, sum_i H_i perp(d_i - p_k), and H4_k over
+  // (x, y, z, yaw).
   struct KeyframePairs {
     Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
     Vec3 turn = Vec3::Zero();
+    Eigen::Matrix4d joint = Eigen::Matrix4d::Zero();
   };
   struct Grouped {
     std::map<std::size_t, KeyframePairs> keyframes;
     Eigen::Matrix3d total = Eigen::Matrix3d::Zero();  // H
+    Eigen::Matrix4d joint = Eigen::Matrix4d::Zero();  // H4
   };
-  Grouped by_keyframe(const Correspondences& pairs) const;
+  // position: the vehicle's, about which the match turns.
+  Grouped by_keyframe(const Correspondences& pairs, const Vec3& position) const;
+  void translation_match(const Grouped& grouped, const Vec3& position,
+                         const Eigen::Vector2d& scan_drift, MapError& error) const;
+  void joint_match(const Grouped& grouped, const Vec3& position, MapError& error) const;
+  void add_keyframe_share(std::size_t k, const Eigen::Matrix4d& A, MapError& error) const;
 
   // The keyframe that added map point `index`; none before the first keyframe's points.
   std::optional<std::size_t> keyframe_of(std::size_t index) const;

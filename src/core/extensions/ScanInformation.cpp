@@ -22,6 +22,11 @@ double residual_variance(const Correspondences& pairs, double min_sigma) {
   return std::max(variance, min_sigma * min_sigma);
 }
 
+// J above: the residual's change per unit of t_x, t_y and yaw about the body.
+Eigen::Vector3d horizontal_jacobian(const Vec3& normal, const Vec3& from_body) {
+  return {normal.x(), normal.y(), -normal.x() * from_body.y() + normal.y() * from_body.x()};
+}
+
 }  // namespace
 
 ScanInformation scan_information(const Correspondences& pairs, const Vec3& body, bool with_yaw,
@@ -40,8 +45,7 @@ ScanInformation scan_information(const Correspondences& pairs, const Vec3& body,
       ++info.vertical_pairs;
     }
     if (w.x() <= 0.0 || n.isZero()) continue;
-    const Vec3 q = pairs.scan[i] - body;
-    const Vec3 J(n.x(), n.y(), -n.x() * q.y() + n.y() * q.x());
+    const Eigen::Vector3d J = horizontal_jacobian(n, pairs.scan[i] - body);
     H.noalias() += w.x() * J * J.transpose();
     ++info.horizontal_pairs;
   }
@@ -69,6 +73,18 @@ Eigen::Matrix3d pair_information(const Correspondences& pairs, std::size_t i) {
   if (i >= pairs.scan_normals.size() || w.x() <= 0.0) return information;
   const Eigen::Vector2d n = pairs.scan_normals[i].head<2>();
   information.topLeftCorner<2, 2>() = w.x() * n * n.transpose();
+  return information;
+}
+
+Eigen::Matrix4d pair_joint_information(const Correspondences& pairs, std::size_t i,
+                                       const Vec3& body) {
+  Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
+  const Vec3& w = pairs.weights[i];
+  information(2, 2) = std::max(w.z(), 0.0);
+  if (i >= pairs.scan_normals.size() || w.x() <= 0.0) return information;
+  const Eigen::Vector3d J = horizontal_jacobian(pairs.scan_normals[i], pairs.scan[i] - body);
+  const Eigen::Vector4d J4(J.x(), J.y(), 0.0, J.z());
+  information.noalias() += w.x() * J4 * J4.transpose();
   return information;
 }
 

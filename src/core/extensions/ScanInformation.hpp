@@ -38,6 +38,11 @@ ScanInformation scan_information(const Correspondences& pairs, const Vec3& body,
 // w_x n n^T horizontally (n: its wall's normal from the scan; none without one), w_z vertically.
 Eigen::Matrix3d pair_information(const Correspondences& pairs, std::size_t i);
 
+// Pair i's information over (x, y, z, yaw) for a body at `body`: w_x J J^T horizontally (J above,
+// the yaw's column the turn about the body), w_z on z.
+Eigen::Matrix4d pair_joint_information(const Correspondences& pairs, std::size_t i,
+                                       const Vec3& body);
+
 struct Observability {
   // Projection onto the directions the scan fixes: a position measured by the scan keeps
   // P (measured - predicted) of its correction; the rest stays as predicted.

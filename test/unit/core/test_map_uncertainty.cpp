@@ -151,6 +151,82 @@ TEST(MapUncertainty, AKeyframesHeadingErrorReachesAFarMatchByItsLeverArm) {
   EXPECT_NEAR((beside.topLeftCorner<3, 3>().norm()), 0.0, 1e-12);
 }
 
+// Walls along x 10 and 12 m east (normals y) and two faces across (normals x): a scan of them
+// fixes x, y and its heading.
+Correspondences walls_ten_to_twelve_metres_east() {
+  return Pairs{}
+      .wall(1, Vec3::UnitY(), Vec3(10.0, 1.0, 0.0))
+      .wall(2, Vec3::UnitY(), Vec3(10.0, -1.0, 0.0))
+      .wall(3, Vec3::UnitY(), Vec3(12.0, 1.0, 0.0))
+      .wall(4, Vec3::UnitY(), Vec3(12.0, -1.0, 0.0))
+      .wall(5, Vec3::UnitX(), Vec3(13.0, 0.0, 0.0))
+      .wall(6, Vec3::UnitX(), Vec3(9.0, 0.0, 0.0))
+      .pairs;
+}
+
+// A match that turns the scan as well (icp.heading: every_scan) follows a keyframe's turn about
+// that keyframe's position: matched where the keyframe was taken, the far walls' turn is the
+// scan's own heading, not a shift of 10 m x eps; matched 10 m east of the keyframe, it is that
+// lever arm's shift. Matched without turning the scan, the walls' lever arm counts either way.
+TEST(MapUncertainty, AMatchThatTurnsFollowsAKeyframesTurnByTheLeverArmToTheVehicle) {
+  Eigen::Matrix4d heading_only = Eigen::Matrix4d::Zero();
+  heading_only(3, 3) = 0.01;
+  MapUncertainty map;
+  map.add_keyframe(0, Vec3::Zero(), heading_only);
+  const Correspondences pairs = walls_ten_to_twelve_metres_east();
+  const Eigen::Matrix4d at_keyframe =
+      map.of_match(pairs, Vec3::Zero(), Eigen::Vector2d::Zero(), true).covariance();
+  EXPECT_NEAR((at_keyframe.topLeftCorner<3, 3>().norm()), 0.0, 1e-9);
+  EXPECT_NEAR(at_keyframe(3, 3), 0.01, 1e-9);
+  const Eigen::Matrix4d east =
+      map.of_match(pairs, Vec3(10.0, 0.0, 0.0), Eigen::Vector2d::Zero(), true).covariance();
+  EXPECT_NEAR(east(0, 0), 0.0, 1e-9);
+  EXPECT_NEAR(east(1, 1), 1.0, 1e-9);
+  EXPECT_NEAR(east(1, 3), 0.1, 1e-9);
+  EXPECT_NEAR(east(3, 3), 0.01, 1e-9);
+  const Eigen::Matrix4d unturned = map.of_match(pairs, Vec3::Zero()).covariance();
+  EXPECT_GT(unturned(1, 1), 1.0);
+}
+
+// Two keyframes a motion prior carried down a corridor, off along its axis by a metre: pairs on
+// the walls behind (keyframe 1) and ahead (keyframe 2), some of their normals tilted a little, as
+// noisy normals are. Sharing the prior's error (CorrelatedError::carried), the two are
+// shifted together and a turning match between them is shifted with them, its heading and its
+// distance to the walls untouched; taken as independent noises, their difference reads as a
+// turn.
+TEST(MapUncertainty, KeyframesCarriedThroughOneBlindStretchShiftTogether) {
+  const Eigen::Matrix4d along_axis = diagonal(1.0, 0.0, 0.0);
+  Pairs walls;
+  for (int i = 0; i < 5; ++i) {
+    const double behind = -1.0 - i;
+    const double ahead = 3.0 + i;
+    const double tilt = 0.02 * (i - 2);  // the normals' noise, along the wall
+    walls.wall(100 + i, Vec3(tilt, 1.0, 0.0).normalized(), Vec3(behind, 1.0, 0.0))
+        .wall(110 + i, Vec3(0.0, -1.0, 0.0), Vec3(behind, -1.0, 0.0))
+        .wall(200 + i, Vec3(0.0, 1.0, 0.0), Vec3(ahead, 1.0, 0.0))
+        .wall(210 + i, Vec3(-tilt, -1.0, 0.0).normalized(), Vec3(ahead, -1.0, 0.0));
+  }
+  const Vec3 between(1.0, 0.0, 0.0);
+  CorrelatedError carried;
+  carried.add_noise(CorrelatedError::carried(0), along_axis);
+  MapUncertainty shared;
+  shared.add_keyframe(0, Vec3::Zero(), isotropic(0.0));
+  shared.add_keyframe(100, Vec3::Zero(), isotropic(0.0), {}, {}, carried);
+  shared.add_keyframe(200, Vec3(2.0, 0.0, 0.0), isotropic(0.0), {}, {}, carried);
+  const Eigen::Matrix4d together =
+      shared.of_match(walls.pairs, between, Eigen::Vector2d::Zero(), true).covariance();
+  EXPECT_NEAR(together(0, 0), 1.0, 1e-9);
+  EXPECT_NEAR(together(1, 1), 0.0, 1e-12);
+  EXPECT_NEAR(together(3, 3), 0.0, 1e-12);
+  MapUncertainty independent;
+  independent.add_keyframe(0, Vec3::Zero(), isotropic(0.0));
+  independent.add_keyframe(100, Vec3::Zero(), along_axis);
+  independent.add_keyframe(200, Vec3(2.0, 0.0, 0.0), along_axis);
+  const Eigen::Matrix4d apart =
+      independent.of_match(walls.pairs, between, Eigen::Vector2d::Zero(), true).covariance();
+  EXPECT_GT(apart(3, 3), 1e-7);  // about 0.8 mrad from a metre of independent shifts
+}
+
 // The heading's drift: a keyframe made 10 s after the first is off by r x 10 s, a = (0, 0, 0, 10)
 // per rad/s. Matched from where it was taken, against points 10 m east: an unturned scan is pulled
 // north by the lever arm (g = (0, 10) per rad: 100 per rad/s); a scan turned as its map is, as
