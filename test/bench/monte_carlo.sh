@@ -4,8 +4,11 @@
 # vertical RMSE's mean, the mean NEES, and the mean of each flight's median NEES (a flight's mean
 # can hide a too-sure stretch behind a too-cautious one; the median says where most scans stand). One seed's figure says little where the estimate is chaotic (a corridor, where one
 # keyframe decides the rest of the flight); the spread over seeds is what a change must improve.
+# --accel-bias-sigma S: each seed's flight with an accelerometer bias drawn from N(0, S^2) per body
+# axis (seeded by the seed; the scenario's imu.accel_bias replaced), e.g. the config's own prior
+# (motion.initial_bias_sigma), which the scenarios' bias-free IMUs never draw.
 # Usage: test/bench/monte_carlo.sh [--build-dir DIR] [--seeds N] [--config FILE]
-#                                  [--set key=value ...] [scenario ...]
+#                                  [--set key=value ...] [--accel-bias-sigma S] [scenario ...]
 # (default: seeds 8, config/slam.yaml, the scenarios corridor and plain_corridor)
 set -euo pipefail
 
@@ -15,19 +18,22 @@ seeds=8
 config="${repo_dir}/config/slam.yaml"
 overrides=()
 scenarios=()
+bias_sigma=
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --build-dir) build_dir="$2"; shift 2 ;;
     --seeds) seeds="$2"; shift 2 ;;
     --config) config="$2"; shift 2 ;;
     --set) overrides+=(--set "$2"); shift 2 ;;
-    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
+    --accel-bias-sigma) bias_sigma="$2"; shift 2 ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
     -*) echo "monte_carlo.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
     *) scenarios+=("$1"); shift ;;
   esac
 done
 [[ ${#scenarios[@]} -gt 0 ]] || scenarios=(corridor plain_corridor)
 [[ "${seeds}" =~ ^[1-9][0-9]*$ ]] || { echo "monte_carlo.sh: --seeds '${seeds}' is not a positive count" >&2; exit 2; }
+[[ -z "${bias_sigma}" || "${bias_sigma}" =~ ^[0-9]*\.?[0-9]+$ ]] || { echo "monte_carlo.sh: --accel-bias-sigma '${bias_sigma}' is not a number >= 0" >&2; exit 2; }
 uavslam="${build_dir}/bin/uavslam"
 [[ -x "${uavslam}" ]] || { echo "monte_carlo.sh: ${uavslam} not built (make build)" >&2; exit 2; }
 out_dir="$(mktemp -d)"
@@ -40,7 +46,24 @@ for scenario in "${scenarios[@]}"; do
   [[ -f "${file}" ]] || { echo "monte_carlo.sh: no scenario ${file}" >&2; exit 2; }
   for seed in $(seq 1 "${seeds}"); do
     echo "running ${scenario}, seed ${seed} of ${seeds} ..." >&2
-    "${uavslam}" simulate --quiet --scenario "${file}" --config "${config}" --seed "${seed}" \
+    flown="${file}"
+    if [[ -n "${bias_sigma}" ]]; then
+      mkdir -p "${out_dir}/scenarios"
+      flown="${out_dir}/scenarios/${scenario}-${seed}.yaml"
+      python3 - "${file}" "${flown}" "${seed}" "${bias_sigma}" <<'PY'
+import random, re, sys
+source, target, seed, sigma = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
+draw = random.Random(seed)
+bias = [draw.gauss(0.0, sigma) for _ in range(3)]
+lines = [l for l in open(source) if not re.match(r"\s+accel_bias:", l)]
+at = next((i for i, l in enumerate(lines) if re.match(r"imu:", l)), None)
+if at is None:
+    sys.exit(f"monte_carlo.sh: {source} has no imu: section for the drawn bias")
+lines.insert(at + 1, "  accel_bias: [%.6f, %.6f, %.6f]\n" % tuple(bias))
+open(target, "w").writelines(lines)
+PY
+    fi
+    "${uavslam}" simulate --quiet --scenario "${flown}" --config "${config}" --seed "${seed}" \
       --out "${out_dir}/${scenario}/${seed}" "${overrides[@]}" > /dev/null
   done
   python3 - "${out_dir}/${scenario}" "${scenario}" <<'PY'
