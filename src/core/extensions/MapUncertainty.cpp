@@ -149,6 +149,7 @@ void MapUncertainty::add_keyframe_share(std::size_t k, const Eigen::Matrix4d& A,
 
 std::vector<std::pair<std::size_t, double>> MapUncertainty::heading_shares(
     const Correspondences& pairs) const {
+  // The shares read the pairs' horizontal information only, not the turn about a position.
   const Grouped grouped = by_keyframe(pairs, Vec3::Zero());
   const double horizontal = grouped.total.topLeftCorner<2, 2>().trace();
   std::vector<std::pair<std::size_t, double>> shares;
