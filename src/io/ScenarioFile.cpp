@@ -104,7 +104,7 @@ void read_mount(const YamlReader& reader, LidarSpec& lidar) {
 
 LidarSpec read_lidar(const YamlReader& reader) {
   reader.expect_keys_only({"beams", "fov_deg", "rate_hz", "min_range", "max_range",
-                           "range_noise_std", "mount", "floor_mirror", "rings",
+                           "range_noise_std", "sweep_seconds", "mount", "floor_mirror", "rings",
                            "vertical_fov_deg"});
   LidarSpec lidar;
   lidar.beams = reader.get_int_or("beams", lidar.beams, NumberRange::at_least(1));
@@ -115,6 +115,8 @@ LidarSpec read_lidar(const YamlReader& reader) {
                                          NumberRange::greater_than(lidar.min_range));
   lidar.range_noise_std =
       reader.get_double_or("range_noise_std", lidar.range_noise_std, NumberRange::non_negative());
+  lidar.sweep_seconds = reader.get_double_or("sweep_seconds", lidar.sweep_seconds,
+                                             NumberRange::between(0.0, 1.0 / lidar.rate_hz));
   if (const auto mount = reader.find("mount")) read_mount(*mount, lidar);
   if (const auto mirror = reader.find("floor_mirror")) {
     lidar.floor_mirror = read_floor_mirror(*mirror, lidar.beams);

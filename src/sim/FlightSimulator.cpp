@@ -24,7 +24,7 @@ bool FlightSimulator::next_scan(Scan& out) {
   const bool late =
       every > 0 && next_scan_index_ % std::uint64_t(every) == std::uint64_t(every) - 1;
   const double taken = late ? stamp - faults_.late_scan_s : stamp;
-  out = lidar_.scan_at(trajectory_.pose_at(taken), stamp, next_scan_index_);
+  out = lidar_.scan_along(trajectory_, taken, stamp, next_scan_index_);
   ++next_scan_index_;
   return true;
 }

@@ -7,6 +7,7 @@
 
 #include "core/Types.hpp"
 #include "sim/Scenario.hpp"
+#include "sim/Trajectory.hpp"
 #include "sim/World.hpp"
 
 namespace uavslam::sim {
@@ -23,10 +24,19 @@ class LidarSimulator {
   // reads +infinity. Consumes one noise draw per beam, so the stream does not depend on the hits.
   Scan scan_at(const Pose& body_pose, double stamp, std::uint64_t sequence);
 
+  // One sweep of a vehicle flying `trajectory`, its first beam at `taken`: each beam from where
+  // the vehicle was when it fired (the spec's sweep_seconds spread over the beams in order; all
+  // from `taken` without a sweep, as scan_at).
+  Scan scan_along(const Trajectory& trajectory, double taken, double stamp, std::uint64_t sequence);
+
  private:
   const World* world_;
   std::shared_ptr<const ScanGeometry> geometry_;
   double range_noise_std_;
+  double sweep_seconds_;
+
+  // One beam's noisy range from the sensor at `sensor_in_world` (one noise draw, hit or not).
+  float range_of(const Eigen::Isometry3d& sensor_in_world, const Vec3& direction);
   std::mt19937_64 random_;
   std::normal_distribution<double> standard_normal_{0.0, 1.0};
 };

@@ -102,6 +102,7 @@ lidar:
   min_range: 0.2
   max_range: 25
   range_noise_std: 0.02
+  sweep_seconds: 0.04
   mount: {position: [0.1, 0, 0.2], rpy_deg: [0, 0, 180]}
   floor_mirror: {beams: 12, spread_deg: 15}
   rings: 4
@@ -132,6 +133,7 @@ faults: {late_scan_every: 20, late_scan_s: 0.15}
   EXPECT_EQ(s.lidar.min_range, 0.2);
   EXPECT_EQ(s.lidar.max_range, 25.0);
   EXPECT_EQ(s.lidar.range_noise_std, 0.02);
+  EXPECT_EQ(s.lidar.sweep_seconds, 0.04);
   EXPECT_EQ(s.lidar.mount_position, Vec3(0.1, 0.0, 0.2));
   EXPECT_EQ(s.lidar.mount_rpy_deg, Vec3(0.0, 0.0, 180.0));
   EXPECT_EQ(s.lidar.floor_mirror.beams, 12);
@@ -225,6 +227,15 @@ TEST_F(YamlFileTest, OutOfRangeValueIsRejected) {
       write("rate.yaml", std::string(kMinimalScenario) + "imu:\n  rate_hz: -5\n");
   EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
               HasSubstr("key 'imu.rate_hz': expected a number > 0, got '-5'"));
+}
+
+// A sweep cannot outlast the scan period it belongs to.
+TEST_F(YamlFileTest, ASweepLongerThanTheScanPeriodIsRejected) {
+  const std::string path =
+      write("sweep.yaml",
+            std::string(kMinimalScenario) + "lidar:\n  rate_hz: 40\n  sweep_seconds: 0.03\n");
+  EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
+              HasSubstr("key 'lidar.sweep_seconds'"));
 }
 
 // The heading drift's changes: read in time order, one out of order named with its index.

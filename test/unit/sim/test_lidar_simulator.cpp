@@ -73,6 +73,28 @@ TEST(LidarSimulator, FloorMirrorBeamsReadTheHeightOverTheFloor) {
   }
 }
 
+// A vehicle turning on the spot while the scanner sweeps: each beam sees the room from the heading
+// the vehicle had when it fired, the first at the stamp, the last sweep_seconds later; without a
+// sweep every beam sees it from the stamp's.
+TEST(LidarSimulator, EachBeamOfASweepIsFiredFromWhereTheVehicleWasThen) {
+  const World world(testing::empty_room());
+  const Trajectory turning({{0.0, Vec3(4.0, 3.0, 1.5), 0.0}, {2.0, Vec3(4.0, 3.0, 1.5), 90.0}});
+  LidarSpec spec = test::three_beam_lidar();
+  spec.sweep_seconds = 0.02;
+  LidarSimulator sweeping(spec, world, 1);
+  LidarSimulator instant(test::three_beam_lidar(), world, 1);
+  const double taken = 1.0;  // mid-turn, about 1.2 rad/s
+  const Scan swept = sweeping.scan_along(turning, taken, taken, 0);
+  const Scan at_start = instant.scan_at(turning.pose_at(taken), taken, 0);
+  const Scan at_end = instant.scan_at(turning.pose_at(taken + 0.02), taken, 0);
+  ASSERT_EQ(swept.ranges.size(), 3u);
+  EXPECT_FLOAT_EQ(swept.ranges[0], at_start.ranges[0]);
+  EXPECT_FLOAT_EQ(swept.ranges[2], at_end.ranges[2]);
+  EXPECT_GT(std::abs(swept.ranges[2] - at_start.ranges[2]), 0.01);
+  const Scan unswept = instant.scan_along(turning, taken, taken, 0);
+  EXPECT_FLOAT_EQ(unswept.ranges[2], at_start.ranges[2]);
+}
+
 TEST(LidarSimulator, RangeNoiseHasTheConfiguredSpread) {
   LidarSpec spec;  // range_noise_std 0.01
   LidarSpec exact = spec;
