@@ -76,12 +76,12 @@ MapUncertainty::Grouped MapUncertainty::by_keyframe(const Correspondences& pairs
   Grouped grouped;
   for (std::size_t i = 0; i < pairs.map_index.size(); ++i) {
     const std::optional<std::size_t> k = keyframe_of(pairs.map_index[i]);
-    const Eigen::Matrix3d information = pair_information(pairs, i);
+    const Eigen::Matrix4d joint = pair_joint_information(pairs, i, position);
+    const Eigen::Matrix3d information = joint.topLeftCorner<3, 3>();
     if (!k || information.isZero()) continue;
     KeyframePairs& own = grouped.keyframes[*k];
     own.information += information;
     own.turn += information * perp(pairs.map[i] - positions_[*k]);
-    const Eigen::Matrix4d joint = pair_joint_information(pairs, i, position);
     own.joint += joint;
     grouped.total += information;
     grouped.joint += joint;

@@ -89,7 +89,7 @@ class MapUncertainty {
                       const std::vector<Vec3>& positions);
 
   // Sigma_map above over (x, y, z, yaw) for the pairs (their map point and map_index, and the
-  // information pair_information gives them), with the drift's terms sum_k A_k a_k and
+  // information pair_joint_information gives them), with the drift's terms sum_k A_k a_k and
   // sum_k A_k h_k; zero when no pair holds information.
   // `position`: where the scan matched; scan_drift: the scan's own drift terms (its heading's a
   // and h: a scan turned by eps about the vehicle moves the match by -g eps, g = H^-1 sum_i H_i

@@ -66,16 +66,6 @@ ScanInformation scan_information(const Correspondences& pairs, const Vec3& body,
   return info;
 }
 
-Eigen::Matrix3d pair_information(const Correspondences& pairs, std::size_t i) {
-  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
-  const Vec3& w = pairs.weights[i];
-  if (w.z() > 0.0) information(2, 2) = w.z();
-  if (i >= pairs.scan_normals.size() || w.x() <= 0.0) return information;
-  const Eigen::Vector2d n = pairs.scan_normals[i].head<2>();
-  information.topLeftCorner<2, 2>() = w.x() * n * n.transpose();
-  return information;
-}
-
 Eigen::Matrix4d pair_joint_information(const Correspondences& pairs, std::size_t i,
                                        const Vec3& body) {
   Eigen::Matrix4d information = Eigen::Matrix4d::Zero();

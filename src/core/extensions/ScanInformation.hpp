@@ -34,12 +34,10 @@ struct ScanInformation {
 ScanInformation scan_information(const Correspondences& pairs, const Vec3& body, bool with_yaw,
                                  double min_sigma);
 
-// Pair i's information on the body's translation (x, y, z), in units of the residual variance:
-// w_x n n^T horizontally (n: its wall's normal from the scan; none without one), w_z vertically.
-Eigen::Matrix3d pair_information(const Correspondences& pairs, std::size_t i);
-
-// Pair i's information over (x, y, z, yaw) for a body at `body`: w_x J J^T horizontally (J above,
-// the yaw's column the turn about the body), w_z on z.
+// Pair i's information over (x, y, z, yaw) for a body at `body`, in units of the residual
+// variance: w_x J J^T horizontally (J above, the yaw's column the turn about the body; none
+// without the wall's normal from the scan), w_z on z. Its top-left 3 x 3 is the information on
+// the translation alone, w_x n n^T and w_z, whatever the body.
 Eigen::Matrix4d pair_joint_information(const Correspondences& pairs, std::size_t i,
                                        const Vec3& body);
 
