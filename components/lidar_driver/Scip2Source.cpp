@@ -58,7 +58,9 @@ msg::LaserScan to_scan_message(const drivers::scip2::TimedScan& timed,
   m.range_min(static_cast<float>(sensor.min_distance_mm * 1e-3));
   m.range_max(static_cast<float>(sensor.max_distance_mm * 1e-3));
   m.scan_time(static_cast<float>(sensor.scan_period()));
-  m.time_increment(static_cast<float>(sensor.scan_period() / sensor.steps_per_turn));
+  // A published beam spans `cluster` steps, as its angle does.
+  m.time_increment(
+      static_cast<float>(sensor.scan_period() * request.cluster / sensor.steps_per_turn));
   return m;
 }
 

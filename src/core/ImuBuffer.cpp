@@ -19,7 +19,7 @@ void ImuBuffer::add(const ImuSample& sample) {
   while (samples_.front().stamp < sample.stamp - history_) samples_.pop_front();
 }
 
-std::optional<Eigen::Quaterniond> ImuBuffer::orientation_at(double t) const {
+std::optional<ImuBuffer::Around> ImuBuffer::around(double t) const {
   if (samples_.empty() || !std::isfinite(t)) return std::nullopt;
   const auto after =
       std::lower_bound(samples_.begin(), samples_.end(), t,
@@ -28,13 +28,28 @@ std::optional<Eigen::Quaterniond> ImuBuffer::orientation_at(double t) const {
   const bool has_before = after != samples_.begin();
   if (has_before && has_after && after->stamp - std::prev(after)->stamp <= 2.0 * max_gap_) {
     const ImuSample& before = *std::prev(after);
-    const double s = (t - before.stamp) / (after->stamp - before.stamp);
-    return before.orientation.slerp(s, after->orientation);
+    return Around{&before, &*after, (t - before.stamp) / (after->stamp - before.stamp)};
   }
   // No pair close around t: the nearest single sample, if it is close enough.
-  if (has_after && after->stamp - t <= max_gap_) return after->orientation;
-  if (has_before && t - std::prev(after)->stamp <= max_gap_) return std::prev(after)->orientation;
+  if (has_after && after->stamp - t <= max_gap_) return Around{&*after, &*after, 0.0};
+  if (has_before && t - std::prev(after)->stamp <= max_gap_) {
+    return Around{&*std::prev(after), &*std::prev(after), 0.0};
+  }
   return std::nullopt;
+}
+
+std::optional<Eigen::Quaterniond> ImuBuffer::orientation_at(double t) const {
+  const std::optional<Around> a = around(t);
+  if (!a) return std::nullopt;
+  if (a->first == a->second) return a->first->orientation;
+  return a->first->orientation.slerp(a->fraction, a->second->orientation);
+}
+
+std::optional<Vec3> ImuBuffer::angular_velocity_at(double t) const {
+  const std::optional<Around> a = around(t);
+  if (!a) return std::nullopt;
+  return (1.0 - a->fraction) * a->first->angular_velocity +
+         a->fraction * a->second->angular_velocity;
 }
 
 }  // namespace uavslam

@@ -22,6 +22,8 @@ class ImuBuffer {
   // Slerp between the samples around t; the nearest sample when t lies just outside them; none
   // when no sample is within max_gap.
   std::optional<Eigen::Quaterniond> orientation_at(double t) const;
+  // The body's rate (rad/s, body frame) at t, interpolated as orientation_at.
+  std::optional<Vec3> angular_velocity_at(double t) const;
 
   std::size_t size() const { return samples_.size(); }
   std::size_t rejected() const { return rejected_; }
@@ -30,6 +32,14 @@ class ImuBuffer {
   double max_gap_;
   double history_;
   std::deque<ImuSample> samples_;
+  // The samples around t: both when within 2 max_gap of each other, else the nearer one if
+  // within max_gap (first == second), else none; and t's fraction from the first to the second.
+  struct Around {
+    const ImuSample* first = nullptr;
+    const ImuSample* second = nullptr;
+    double fraction = 0.0;
+  };
+  std::optional<Around> around(double t) const;
   std::size_t rejected_ = 0;
 };
 

@@ -15,6 +15,14 @@ ScanGeometry ScanGeometry::planar(double angle_min, double angle_increment, int 
   return g;
 }
 
+void ScanGeometry::sweep_beams_in_order(double time_increment) {
+  fire_times.clear();
+  if (time_increment <= 0.0) return;
+  fire_times.reserve(directions.size());
+  for (std::size_t i = 0; i < directions.size(); ++i)
+    fire_times.push_back(time_increment * double(i));
+}
+
 bool ScanGeometry::has_vertical_beams() const {
   return std::any_of(directions.begin(), directions.end(),
                      [&](const Vec3& d) { return is_vertical(mount.linear() * d); });

@@ -18,8 +18,43 @@ struct ProjectedScan {
   std::size_t invalid = 0;     // ranges dropped as NaN, inf or out of range
 };
 
-// p = R_imu * (mount * (r * direction)): each valid beam in the world orientation.
-ProjectedScan project_scan(const Scan& scan, const Eigen::Quaterniond& orientation);
+// How the body moves while the scanner sweeps (beyond the seed): its rates, taken as constant over
+// the sweep's few milliseconds.
+struct SweepMotion {
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s, body frame (the gyro's)
+  Vec3 velocity = Vec3::Zero();          // m/s, world frame
+  bool moving() const { return !angular_velocity.isZero() || !velocity.isZero(); }
+};
+
+// Each beam in the world, from the body at the scan's stamp (at `position`: the origin places
+// the points relative to it), as it fired. Without fire times or motion, every beam is placed
+// from the stamp's pose.
+class SweptSensor {
+ public:
+  // Keeps a reference to `geometry`, which must outlive it.
+  SweptSensor(const ScanGeometry& geometry, const Eigen::Quaterniond& orientation,
+              const SweepMotion& sweep, const Vec3& position = Vec3::Zero());
+  // Beam i's return at `range`; and, if asked, the beam's direction.
+  Vec3 point(std::size_t i, double range, Vec3* direction = nullptr) const;
+
+ private:
+  const ScanGeometry* geometry_;
+  Eigen::Isometry3d at_stamp_;  // sensor frame -> the world at the stamp
+  bool deskew_;
+  Eigen::Matrix3d orientation_;
+  Vec3 axis_ = Vec3::UnitZ();  // of the body's turn (body frame), at
+  double rate_ = 0.0;          // rad/s
+  Vec3 velocity_;
+  Vec3 position_;
+};
+
+// p = R_imu * (mount * (r * direction)): each valid beam in the world orientation, relative to the
+// body at the scan's stamp. With the geometry's fire times and a moving sweep, beam i is placed
+// from where the body was when it fired, t_i after the stamp:
+//   p_i = R_imu Exp(omega t_i) (mount * (r_i d_i)) + v t_i   (omega: body frame, v: world)
+// (the motion compensation, or deskewing, of LiDAR odometry: KISS-ICP, FAST-LIO).
+ProjectedScan project_scan(const Scan& scan, const Eigen::Quaterniond& orientation,
+                           const SweepMotion& sweep = {});
 
 // Keep every k-th point (seed: k = 5, 216 of 1080), starting with the first.
 template <typename T>

@@ -81,6 +81,10 @@ struct SlamConfig {
     // floor beams measure it, struck the floor from a tilted scanner and is set aside
     // (extensions/FloorReturns). 0: every point kept, as the seed.
     double floor_margin = 0.0;
+    // Beyond the seed: each beam placed from where the body was when it fired (the geometry's
+    // fire times), by the IMU's rate and the motion prior's velocity (ScanProjection's
+    // SweepMotion). false: every beam from the pose at the stamp, as the seed.
+    bool deskew = false;
   } scan;
 
   // Beyond the seed: the height from the floor's level (extensions/FloorLevel), for a scanner

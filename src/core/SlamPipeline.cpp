@@ -60,6 +60,12 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   follow_heading_drift(scan.stamp);
   drift_check_.reset();
   Eigen::Quaterniond orientation = corrected(*source_orientation);
+  // The motion prior's motion since the last pose, in the map's frame (turned by the heading
+  // correction, if any).
+  const Vec3 predicted = heading_correction_ == 0.0
+                             ? prediction.motion
+                             : yaw_rotation(heading_correction_) * prediction.motion;
+  report.sweep = sweep_motion(scan, predicted);
   ProjectedScan projected = project(scan, orientation, report);
   // Step 2: every k-th point.
   const ScanPoints points = scan_points(projected);
@@ -83,9 +89,6 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   // Steps 3-5: the ICP from the last position (the seed) moved by the prediction. The matcher
   // measures its correction, and so the seed's 1 m "distance moved" check, from this start: the
   // check limits what the matcher changed, not the predicted motion itself.
-  const Vec3 predicted = heading_correction_ == 0.0
-                             ? prediction.motion
-                             : yaw_rotation(heading_correction_) * prediction.motion;
   const Pose start{scan.stamp, pose_.position + predicted, orientation};
   const Eigen::Matrix3d prior = predicted_covariance(prediction, start.stamp);
   report.relocalised = stale(scan.stamp);
@@ -162,6 +165,7 @@ void SlamPipeline::anchor_heading(ScanReport& report) {
   for (double& heading : keyframe_headings_) heading = wrap_angle(heading + *yaw);
   move_with_map(moved, *yaw);
   for (Vec3& p : report.added_points) p = moved * p;
+  report.sweep.velocity = yaw_rotation(*yaw) * report.sweep.velocity;
   report.pose = pose_;
   report.frame_turn = turn;
 }
@@ -261,10 +265,27 @@ bool SlamPipeline::heading_seen(const Eigen::Quaterniond& orientation) const {
   return max_tilt <= 0.0 || tilt_of(orientation) <= max_tilt;
 }
 
-// Step 1's points; beyond the seed, without the floor strikes of a tilted scanner's level beams.
+// Beyond the seed (scan.deskew): how the body moved while the scanner swept, from the IMU's rate
+// at mid-sweep and the prior's mean velocity since the last pose (over 25 ms at 40 Hz, the
+// velocity changes by far less than the motion itself). None without fire times.
+SweepMotion SlamPipeline::sweep_motion(const Scan& scan, const Vec3& predicted) const {
+  const std::vector<double>& fire_times = scan.geometry->fire_times;
+  if (!config_.scan.deskew || fire_times.empty()) return {};
+  SweepMotion sweep;
+  const double middle = scan.stamp + 0.5 * fire_times.back();
+  if (const std::optional<Vec3> rate = imu_.angular_velocity_at(middle)) {
+    sweep.angular_velocity = *rate;
+  }
+  const double since_pose = scan.stamp - pose_.stamp;
+  if (!map_.empty() && since_pose > 0.0) sweep.velocity = predicted / since_pose;
+  return sweep;
+}
+
+// Step 1's points; beyond the seed, without the floor strikes of a tilted scanner's level beams,
+// each beam from where the body was when it fired.
 ProjectedScan SlamPipeline::project(const Scan& scan, const Eigen::Quaterniond& orientation,
                                     ScanReport& report) const {
-  ProjectedScan projected = project_scan(scan, orientation);
+  ProjectedScan projected = project_scan(scan, orientation, report.sweep);
   report.invalid_ranges = projected.invalid;
   if (config_.scan.floor_margin > 0.0) {
     report.floor_returns = set_aside_floor_returns(projected, config_.scan.floor_margin);

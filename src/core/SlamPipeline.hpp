@@ -43,8 +43,12 @@ struct ScanReport {
   std::size_t points_used = 0;  // after subsampling
   std::size_t invalid_ranges = 0;
   std::size_t floor_returns = 0;  // level beams' points set aside as floor strikes (FloorReturns)
-  double error_before = 0.0;      // m^2, eq. 5.18
-  double error_after = 0.0;       // m^2
+  // How the body moved while the scanner swept, as the points were placed (scan.deskew; zero:
+  // every beam from the pose at the stamp). Whoever places the scan again (the dense products)
+  // places it alike.
+  SweepMotion sweep;
+  double error_before = 0.0;  // m^2, eq. 5.18
+  double error_after = 0.0;   // m^2
   int iterations = 0;
   bool map_updated = false;  // this scan was a keyframe
   // The match failed and the pose is the predicted one (the last pose moved by the motion prior):
@@ -160,6 +164,7 @@ class SlamPipeline {
   bool stale(double stamp) const;
   bool moved_enough_for_map_update(const Pose& pose) const;
   void add_to_map(ScanReport& report, const ProjectedScan& projected);
+  SweepMotion sweep_motion(const Scan& scan, const Vec3& predicted) const;
   ProjectedScan project(const Scan& scan, const Eigen::Quaterniond& orientation,
                         ScanReport& report) const;
   ScanPoints scan_points(const ProjectedScan& projected) const;

@@ -60,10 +60,17 @@ struct ScanGeometry {
   double min_range = 0.1;        // m; shorter returns are invalid
   double max_range = 30.0;       // m; longer returns are invalid
   Eigen::Isometry3d mount = Eigen::Isometry3d::Identity();  // sensor frame -> body frame
+  // s after the scan's stamp that each beam fires, one per beam: a scanning LiDAR sweeps its beams
+  // in turn (a UTM-30LX's 270 degrees take 18.75 ms). Empty: every beam at the stamp.
+  std::vector<double> fire_times;
 
   // A planar scanner in the sensor's x-y plane: beam i at angle_min + i * angle_increment
   // (the sensor_msgs/LaserScan convention).
   static ScanGeometry planar(double angle_min, double angle_increment, int beams);
+
+  // Beam i fires time_increment * i after the stamp (sensor_msgs/LaserScan's time_increment);
+  // 0 clears the fire times.
+  void sweep_beams_in_order(double time_increment);
 
   // Some beams point more up or down than sideways on the body (is_vertical: a floor mirror, the
   // rings of a 3D scanner): the sensor can measure height. A planar scanner's cannot.

@@ -72,6 +72,9 @@ msg::LaserScan to_msg(const Scan& scan, double angle_min, double angle_increment
   if (scan.geometry) {
     m.range_min(static_cast<float>(scan.geometry->min_range));
     m.range_max(static_cast<float>(scan.geometry->max_range));
+    // Beams fired in order at a steady rate: the step between the first two.
+    const std::vector<double>& fired = scan.geometry->fire_times;
+    if (fired.size() > 1) m.time_increment(static_cast<float>(fired[1] - fired[0]));
   }
   m.ranges(scan.ranges);
   m.intensities(scan.intensities);

@@ -10,10 +10,24 @@ MessageScanGeometry::MessageScanGeometry(const LidarSpec& lidar)
 std::shared_ptr<const ScanGeometry> MessageScanGeometry::for_message(
     const msg::LaserScan& message) {
   if (sensor_ && (message.ranges().size() == sensor_->directions.size() || lidar_->rings > 1)) {
-    return sensor_;
+    return timed(sensor_, message.time_increment());
   }
   if (sensor_) own_layout_used_ = true;
-  return layout_of(message);
+  return timed(layout_of(message), message.time_increment());
+}
+
+// A scanner that says when its beams fire (time_increment > 0) is taken at its word: the sensor
+// file's sweep, if any, is the same scanner's on paper.
+std::shared_ptr<const ScanGeometry> MessageScanGeometry::timed(
+    const std::shared_ptr<const ScanGeometry>& geometry, float time_increment) {
+  if (!(time_increment > 0.0f)) return geometry;
+  if (timed_ && timed_from_ == geometry && timed_increment_ == time_increment) return timed_;
+  ScanGeometry copy = *geometry;
+  copy.sweep_beams_in_order(time_increment);
+  timed_from_ = geometry;
+  timed_increment_ = time_increment;
+  timed_ = std::make_shared<const ScanGeometry>(std::move(copy));
+  return timed_;
 }
 
 std::shared_ptr<const ScanGeometry> MessageScanGeometry::layout_of(const msg::LaserScan& message) {

@@ -6,6 +6,8 @@
 //   - With one (a sensor file's `lidar`): the sensor's geometry (mount, floor mirror, rings). A
 //     planar scan with another beam count keeps its own layout, placed on the vehicle as the
 //     description says: a real UTM-30LX sends 1081 steps where the simulated one has 1080.
+//   Either way a message's time_increment > 0 says when each beam fired (the geometry's fire
+//   times), for the matcher's deskew (scan.deskew).
 #pragma once
 
 #include <cstddef>
@@ -35,6 +37,8 @@ class MessageScanGeometry {
 
  private:
   std::shared_ptr<const ScanGeometry> layout_of(const msg::LaserScan& message);
+  std::shared_ptr<const ScanGeometry> timed(const std::shared_ptr<const ScanGeometry>& geometry,
+                                            float time_increment);
 
   std::optional<LidarSpec> lidar_;
   std::shared_ptr<const ScanGeometry> sensor_;
@@ -45,6 +49,9 @@ class MessageScanGeometry {
   float angle_increment_ = 0.0f;
   float range_min_ = 0.0f;
   float range_max_ = 0.0f;
+  std::shared_ptr<const ScanGeometry> timed_;  // the last geometry given fire times, from
+  std::shared_ptr<const ScanGeometry> timed_from_;
+  float timed_increment_ = 0.0f;
 };
 
 }  // namespace uavslam::dds

@@ -41,6 +41,7 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.scan.floor_margin = v.as_double(NumberRange::non_negative());
        }},
+      {"scan", "deskew", [](SlamConfig& c, const YamlReader& v) { c.scan.deskew = v.as_bool(); }},
       {"floor", "level_gate",
        [](SlamConfig& c, const YamlReader& v) {
          c.floor.level_gate = v.as_double(NumberRange::non_negative());

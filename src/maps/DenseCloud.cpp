@@ -40,16 +40,15 @@ DenseCloud::DenseCloud(double voxel) : voxel_(voxel) {
   }
 }
 
-void DenseCloud::add_scan(const Scan& scan, const Pose& pose) {
+void DenseCloud::add_scan(const Scan& scan, const Pose& pose, const SweepMotion& sweep) {
   const ScanGeometry& geometry = *scan.geometry;
   const bool has_intensity = scan.intensities.size() == scan.ranges.size();
-  const Eigen::Isometry3d sensor_to_world =
-      Eigen::Translation3d(pose.position) * pose.orientation * geometry.mount;
+  const SweptSensor sensor(geometry, pose.orientation, sweep, pose.position);
   const std::size_t beams = std::min(scan.ranges.size(), geometry.directions.size());
   placed_.clear();
   for (std::size_t i = 0; i < beams; ++i) {
     if (!is_valid_range(scan.ranges[i], geometry)) continue;
-    const Vec3 p = sensor_to_world * (double(scan.ranges[i]) * geometry.directions[i]);
+    const Vec3 p = sensor.point(i, double(scan.ranges[i]));
     const float intensity = has_intensity ? scan.intensities[i] : 0.0f;
     if (voxel_ <= 0.0) {
       add_point(p, intensity, scan.stamp);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/ScanProjection.hpp"
 #include "core/Types.hpp"
 #include "maps/HugePageAllocator.hpp"
 
@@ -26,8 +27,9 @@ class DenseCloud {
   explicit DenseCloud(double voxel);
 
   // Every valid return of the scan, placed by the pose the matcher gave it:
-  // p = t + R (mount (r d)), the same projection as the matcher's (ScanProjection.hpp).
-  void add_scan(const Scan& scan, const Pose& pose);
+  // p = t + R (mount (r d)), the same projection as the matcher's (ScanProjection.hpp), each beam
+  // from where the body was when it fired given the sweep's motion.
+  void add_scan(const Scan& scan, const Pose& pose, const SweepMotion& sweep = {});
   void add_point(const Vec3& position, float intensity, double time);
 
   // In the order the voxels were first hit: scan order, as a reader of the cloud expects.

@@ -52,6 +52,18 @@ std::vector<Vec3> multi_ring_directions(const LidarSpec& spec) {
   return directions;
 }
 
+// The rings fire together at each azimuth, the azimuths in turn (a spinning multi-ring scanner).
+std::vector<double> multi_ring_fire_times(const LidarSpec& spec) {
+  const double step = even_step(spec.sweep_seconds, spec.beams);
+  std::vector<double> times;
+  if (spec.sweep_seconds <= 0.0) return times;
+  times.reserve(static_cast<std::size_t>(spec.beams) * static_cast<std::size_t>(spec.rings));
+  for (int ring = 0; ring < spec.rings; ++ring) {
+    for (int beam = 0; beam < spec.beams; ++beam) times.push_back(beam * step);
+  }
+  return times;
+}
+
 }  // namespace
 
 Eigen::Isometry3d lidar_mount(const LidarSpec& spec) {
@@ -68,13 +80,21 @@ ScanGeometry planar_scan_geometry(const LidarSpec& spec, double angle_min, doubl
   geometry.min_range = spec.min_range;
   geometry.max_range = spec.max_range;
   geometry.mount = lidar_mount(spec);
+  // The mirror turns at one rate: a layout's beams sweep as many seconds per radian as the spec's.
+  const double fov = deg_to_rad(spec.fov_deg);
+  if (spec.sweep_seconds > 0.0 && fov > 0.0) {
+    geometry.sweep_beams_in_order(spec.sweep_seconds * std::abs(angle_increment) / fov);
+  }
   return geometry;
 }
 
 std::shared_ptr<const ScanGeometry> make_scan_geometry(const LidarSpec& spec) {
   ScanGeometry geometry =
       planar_scan_geometry(spec, first_beam_azimuth(spec), beam_increment(spec), spec.beams);
-  if (spec.rings > 1) geometry.directions = multi_ring_directions(spec);  // and no mirror
+  if (spec.rings > 1) {  // and no mirror
+    geometry.directions = multi_ring_directions(spec);
+    geometry.fire_times = multi_ring_fire_times(spec);
+  }
   return std::make_shared<const ScanGeometry>(std::move(geometry));
 }
 

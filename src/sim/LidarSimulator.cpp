@@ -13,7 +13,6 @@ LidarSimulator::LidarSimulator(const LidarSpec& spec, const World& world, std::u
     : world_(&world),
       geometry_(make_scan_geometry(spec)),
       range_noise_std_(spec.range_noise_std),
-      sweep_seconds_(spec.sweep_seconds),
       random_(mix_seed(seed, kLidarStream)) {}
 
 float LidarSimulator::range_of(const Eigen::Isometry3d& sensor_in_world, const Vec3& direction) {
@@ -41,16 +40,14 @@ Scan LidarSimulator::scan_at(const Pose& body_pose, double stamp, std::uint64_t 
 Scan LidarSimulator::scan_along(const Trajectory& trajectory, double taken, double stamp,
                                 std::uint64_t sequence) {
   const std::size_t beams = geometry_->directions.size();
-  if (sweep_seconds_ <= 0.0 || beams < 2) {
-    return scan_at(trajectory.pose_at(taken), stamp, sequence);
-  }
+  if (geometry_->fire_times.empty()) return scan_at(trajectory.pose_at(taken), stamp, sequence);
   Scan scan;
   scan.stamp = stamp;
   scan.sequence = sequence;
   scan.geometry = geometry_;
   scan.ranges.reserve(beams);
   for (std::size_t i = 0; i < beams; ++i) {
-    const double fired = taken + sweep_seconds_ * double(i) / double(beams - 1);
+    const double fired = taken + geometry_->fire_times[i];
     const Eigen::Isometry3d sensor_in_world =
         trajectory.pose_at(fired).isometry() * geometry_->mount;
     scan.ranges.push_back(range_of(sensor_in_world, geometry_->directions[i]));

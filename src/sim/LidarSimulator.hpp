@@ -25,7 +25,7 @@ class LidarSimulator {
   Scan scan_at(const Pose& body_pose, double stamp, std::uint64_t sequence);
 
   // One sweep of a vehicle flying `trajectory`, its first beam at `taken`: each beam from where
-  // the vehicle was when it fired (the spec's sweep_seconds spread over the beams in order; all
+  // the vehicle was when it fired (the geometry's fire_times, from the spec's sweep_seconds; all
   // from `taken` without a sweep, as scan_at).
   Scan scan_along(const Trajectory& trajectory, double taken, double stamp, std::uint64_t sequence);
 
@@ -33,7 +33,6 @@ class LidarSimulator {
   const World* world_;
   std::shared_ptr<const ScanGeometry> geometry_;
   double range_noise_std_;
-  double sweep_seconds_;
 
   // One beam's noisy range from the sensor at `sensor_in_world` (one noise draw, hit or not).
   float range_of(const Eigen::Isometry3d& sensor_in_world, const Vec3& direction);

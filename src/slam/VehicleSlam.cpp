@@ -92,10 +92,10 @@ VehicleScan VehicleSlam::process_scan(const Scan& scan, std::size_t skipped_befo
   if (result.posed() && (cloud_ || occupancy_)) {
     const Vec3* origin = result.keyframe ? &result.keyframe->sensor_origin : nullptr;
     if (pipeline_.frame_settled()) {
-      add_dense(scan, result.report.pose, origin);
+      add_dense(scan, result.report.pose, result.report.sweep, origin);
     } else {
-      unsettled_scans_.push_back(
-          {scan, result.report.pose, origin ? std::optional<Vec3>(*origin) : std::nullopt});
+      unsettled_scans_.push_back({scan, result.report.pose, result.report.sweep,
+                                  origin ? std::optional<Vec3>(*origin) : std::nullopt});
     }
   }
   result.heading_drift = pipeline_.heading_drift();
@@ -115,15 +115,16 @@ Keyframe VehicleSlam::keyframe_of(const Scan& scan, ScanReport& report) {
 
 // The offline variant's products: every valid point of the posed scan into the cloud, and a
 // keyframe's full scan into the OctoMap (ray-casting every scan would cost more than the matching).
-void VehicleSlam::add_dense(const Scan& scan, const Pose& pose, const Vec3* sensor_origin) {
+void VehicleSlam::add_dense(const Scan& scan, const Pose& pose, const SweepMotion& sweep,
+                            const Vec3* sensor_origin) {
   if (cloud_) {
     const auto started = Clock::now();
-    cloud_->add_scan(scan, pose);
+    cloud_->add_scan(scan, pose, sweep);
     cloud_seconds_ += seconds_since(started);
   }
   if (!occupancy_ || !sensor_origin) return;
   const auto started = Clock::now();
-  Points points = project_scan(scan, pose.orientation).points;
+  Points points = project_scan(scan, pose.orientation, sweep).points;
   for (Vec3& p : points) p += pose.position;
   occupancy_->insert_keyframe(points, *sensor_origin);
   occupancy_seconds_ += seconds_since(started);
@@ -149,8 +150,10 @@ void VehicleSlam::turn_frame(const FrameTurn& turn) {
   for (UnsettledScan& held : unsettled_scans_) {
     held.pose.position = moved * held.pose.position;
     held.pose.orientation = yaw_rotation(turn.yaw) * held.pose.orientation;
+    held.sweep.velocity = yaw_rotation(turn.yaw) * held.sweep.velocity;
     if (held.sensor_origin) held.sensor_origin = moved * *held.sensor_origin;
-    add_dense(held.scan, held.pose, held.sensor_origin ? &*held.sensor_origin : nullptr);
+    add_dense(held.scan, held.pose, held.sweep,
+              held.sensor_origin ? &*held.sensor_origin : nullptr);
   }
   unsettled_scans_.clear();
 }

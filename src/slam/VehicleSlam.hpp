@@ -131,7 +131,8 @@ class VehicleSlam {
   MotionPrediction predicted_motion(double stamp);
   void scan_posed(const ScanReport& report);
   Keyframe keyframe_of(const Scan& scan, ScanReport& report);
-  void add_dense(const Scan& scan, const Pose& pose, const Vec3* sensor_origin);
+  void add_dense(const Scan& scan, const Pose& pose, const SweepMotion& sweep,
+                 const Vec3* sensor_origin);
   void add_to_graph(const ScanReport& report);
   bool apply_graph_update();
   void turn_frame(const FrameTurn& turn);
@@ -141,6 +142,7 @@ class VehicleSlam {
   struct UnsettledScan {
     Scan scan;
     Pose pose;
+    SweepMotion sweep;
     std::optional<Vec3> sensor_origin;  // a keyframe's
   };
   std::vector<GraphKeyframe> unsettled_keyframes_;

@@ -7,8 +7,11 @@
 # --accel-bias-sigma S: each seed's flight with an accelerometer bias drawn from N(0, S^2) per body
 # axis (seeded by the seed; the scenario's imu.accel_bias replaced), e.g. the config's own prior
 # (motion.initial_bias_sigma), which the scenarios' bias-free IMUs never draw.
+# --sweep-seconds S: the scanner's sweep replaced (lidar.sweep_seconds; 0: every beam at the
+# stamp, as the scenarios were flown before they swept).
 # Usage: test/bench/monte_carlo.sh [--build-dir DIR] [--seeds N] [--config FILE]
-#                                  [--set key=value ...] [--accel-bias-sigma S] [scenario ...]
+#                                  [--set key=value ...] [--accel-bias-sigma S]
+#                                  [--sweep-seconds S] [scenario ...]
 # (default: seeds 8, config/slam.yaml, the scenarios corridor and plain_corridor)
 set -euo pipefail
 
@@ -19,6 +22,7 @@ config="${repo_dir}/config/slam.yaml"
 overrides=()
 scenarios=()
 bias_sigma=
+sweep=
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --build-dir) build_dir="$2"; shift 2 ;;
@@ -26,7 +30,8 @@ while [[ $# -gt 0 ]]; do
     --config) config="$2"; shift 2 ;;
     --set) overrides+=(--set "$2"); shift 2 ;;
     --accel-bias-sigma) bias_sigma="$2"; shift 2 ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    --sweep-seconds) sweep="$2"; shift 2 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
     -*) echo "monte_carlo.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
     *) scenarios+=("$1"); shift ;;
   esac
@@ -34,6 +39,7 @@ done
 [[ ${#scenarios[@]} -gt 0 ]] || scenarios=(corridor plain_corridor)
 [[ "${seeds}" =~ ^[1-9][0-9]*$ ]] || { echo "monte_carlo.sh: --seeds '${seeds}' is not a positive count" >&2; exit 2; }
 [[ -z "${bias_sigma}" || "${bias_sigma}" =~ ^[0-9]*\.?[0-9]+$ ]] || { echo "monte_carlo.sh: --accel-bias-sigma '${bias_sigma}' is not a number >= 0" >&2; exit 2; }
+[[ -z "${sweep}" || "${sweep}" =~ ^[0-9]*\.?[0-9]+$ ]] || { echo "monte_carlo.sh: --sweep-seconds '${sweep}' is not a number >= 0" >&2; exit 2; }
 uavslam="${build_dir}/bin/uavslam"
 [[ -x "${uavslam}" ]] || { echo "monte_carlo.sh: ${uavslam} not built (make build)" >&2; exit 2; }
 out_dir="$(mktemp -d)"
@@ -47,19 +53,28 @@ for scenario in "${scenarios[@]}"; do
   for seed in $(seq 1 "${seeds}"); do
     echo "running ${scenario}, seed ${seed} of ${seeds} ..." >&2
     flown="${file}"
-    if [[ -n "${bias_sigma}" ]]; then
+    if [[ -n "${bias_sigma}" || -n "${sweep}" ]]; then
       mkdir -p "${out_dir}/scenarios"
       flown="${out_dir}/scenarios/${scenario}-${seed}.yaml"
-      python3 - "${file}" "${flown}" "${seed}" "${bias_sigma}" <<'PY'
+      python3 - "${file}" "${flown}" "${seed}" "${bias_sigma}" "${sweep}" <<'PY'
 import random, re, sys
-source, target, seed, sigma = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
-draw = random.Random(seed)
-bias = [draw.gauss(0.0, sigma) for _ in range(3)]
-lines = [l for l in open(source) if not re.match(r"\s+accel_bias:", l)]
-at = next((i for i, l in enumerate(lines) if re.match(r"imu:", l)), None)
-if at is None:
-    sys.exit(f"monte_carlo.sh: {source} has no imu: section for the drawn bias")
-lines.insert(at + 1, "  accel_bias: [%.6f, %.6f, %.6f]\n" % tuple(bias))
+source, target, seed, sigma, sweep = sys.argv[1], sys.argv[2], int(sys.argv[3]), sys.argv[4], sys.argv[5]
+lines = open(source).readlines()
+
+def replace_in(section, key, value):
+    global lines
+    lines = [l for l in lines if not re.match(r"\s+%s:" % key, l)]
+    at = next((i for i, l in enumerate(lines) if re.match(section + ":", l)), None)
+    if at is None:
+        sys.exit(f"monte_carlo.sh: {source} has no {section}: section for {key}")
+    lines.insert(at + 1, "  %s: %s\n" % (key, value))
+
+if sigma:
+    draw = random.Random(seed)
+    bias = [draw.gauss(0.0, float(sigma)) for _ in range(3)]
+    replace_in("imu", "accel_bias", "[%.6f, %.6f, %.6f]" % tuple(bias))
+if sweep:
+    replace_in("lidar", "sweep_seconds", sweep)
 open(target, "w").writelines(lines)
 PY
     fi

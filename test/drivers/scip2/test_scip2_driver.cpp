@@ -41,6 +41,7 @@ struct ReceivedScan {
   std::size_t intensities = 0;
   float angle_min = 0.0f;
   float angle_increment = 0.0f;
+  float time_increment = 0.0f;
 };
 
 struct TruthLine {
@@ -69,8 +70,12 @@ class ScanCollector {
 
  private:
   void keep(const msg::LaserScan& m) {
-    ReceivedScan scan{dds::from_msg_time(m.header().stamp()), m.ranges(), m.intensities().size(),
-                      m.angle_min(), m.angle_increment()};
+    ReceivedScan scan{dds::from_msg_time(m.header().stamp()),
+                      m.ranges(),
+                      m.intensities().size(),
+                      m.angle_min(),
+                      m.angle_increment(),
+                      m.time_increment()};
     std::lock_guard<std::mutex> lock(mutex_);
     scans_.push_back(std::move(scan));
     changed_.notify_all();
@@ -187,6 +192,8 @@ TEST_F(Scip2Driver, PtyScansMatchTheEmulatorWithin3msDespite100PpmDrift) {
 
   EXPECT_NEAR(received.front().angle_min, -135.0 * kPi / 180.0, 1e-6);
   EXPECT_NEAR(received.front().angle_increment, 0.25 * kPi / 180.0, 1e-7);
+  // A step of the 1440 in the 25 ms turn: when each beam fired, for the matcher's deskew.
+  EXPECT_NEAR(received.front().time_increment, 0.025 / 1440, 1e-9);
   EXPECT_EQ(received.front().intensities, 1080u);
   std::vector<double> intervals;
   for (std::size_t i = 1; i < received.size(); ++i) {

@@ -29,6 +29,22 @@ TEST(ImuBuffer, InterpolatesBetweenSamplesAtTheScanTime) {
   EXPECT_NEAR(yaw_of(*q), 0.04, 1e-9);
 }
 
+// The gyro's rate at a beam's time, for the sweep's deskew: linear between the samples around it,
+// the nearest one just outside them, none beyond the gap.
+TEST(ImuBuffer, GivesTheRateBetweenSamplesAsTheOrientation) {
+  ImuBuffer buffer(0.05);
+  ImuSample first = yaw_sample(1.000, 0.0);
+  first.angular_velocity = Vec3(0.0, 0.0, 1.0);
+  ImuSample second = yaw_sample(1.010, 0.01);
+  second.angular_velocity = Vec3(0.0, 0.2, 2.0);
+  buffer.add(first);
+  buffer.add(second);
+  ASSERT_TRUE(buffer.angular_velocity_at(1.0025).has_value());
+  EXPECT_TRUE(buffer.angular_velocity_at(1.0025)->isApprox(Vec3(0.0, 0.05, 1.25), 1e-9));
+  EXPECT_TRUE(buffer.angular_velocity_at(1.04)->isApprox(second.angular_velocity, 1e-12));
+  EXPECT_FALSE(buffer.angular_velocity_at(1.2).has_value());
+}
+
 TEST(ImuBuffer, HoldsTheNearestSampleJustOutsideAndNothingFarther) {
   ImuBuffer buffer(0.05);
   EXPECT_FALSE(buffer.orientation_at(1.0).has_value());

@@ -50,6 +50,37 @@ TEST(ScanProjection, AppliesOrientationAndMount) {
   EXPECT_TRUE(q.points[1].isApprox(Vec3(0.1, 0.0, -2.0), 1e-9)) << q.points[1].transpose();
 }
 
+// A body turning and moving while its three beams fire 10 ms apart: each beam's point is where that
+// beam hit from where the body was then, p_i = R Exp(omega t_i) (mount (r d_i)) + v t_i; without
+// the sweep's motion every beam is placed from the stamp's pose.
+TEST(ScanProjection, EachBeamIsPlacedFromWhereTheBodyWasWhenItFired) {
+  auto g = three_beams();
+  g->mount.translation() = Vec3(0.1, 0.0, 0.05);
+  g->sweep_beams_in_order(0.01);
+  ASSERT_EQ(g->fire_times, (std::vector<double>{0.0, 0.01, 0.02}));
+  Scan scan;
+  scan.geometry = g;
+  scan.ranges = {2.0f, 3.0f, 4.0f};
+  const Eigen::Quaterniond orientation(Eigen::AngleAxisd(0.3, Vec3::UnitZ()));
+  SweepMotion sweep;
+  sweep.angular_velocity = Vec3(0.0, 0.0, 2.0);  // rad/s, body frame
+  sweep.velocity = Vec3(1.5, -0.5, 0.0);         // m/s, world frame
+  const ProjectedScan p = project_scan(scan, orientation, sweep);
+  const ProjectedScan still = project_scan(scan, orientation);
+  ASSERT_EQ(p.points.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double t = 0.01 * double(i);
+    Eigen::Isometry3d body = Eigen::Isometry3d::Identity();
+    body.linear() = Eigen::AngleAxisd(0.3 + 2.0 * t, Vec3::UnitZ()).toRotationMatrix();
+    body.translation() = sweep.velocity * t;
+    const Vec3 hit = body * g->mount * (double(scan.ranges[i]) * g->directions[i]);
+    EXPECT_TRUE(p.points[i].isApprox(hit, 1e-12))
+        << "beam " << i << ": " << p.points[i].transpose();
+  }
+  EXPECT_TRUE(p.points[0].isApprox(still.points[0], 1e-12));
+  EXPECT_GT((p.points[2] - still.points[2]).norm(), 0.05);  // 0.04 rad at 4 m and 3 cm moved
+}
+
 TEST(ScanProjection, KeepsEveryKthPointAsTheSeed) {
   Points points(1080, Vec3::Zero());
   for (std::size_t i = 0; i < points.size(); ++i) points[i].x() = double(i);

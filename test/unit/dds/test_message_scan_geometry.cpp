@@ -5,6 +5,7 @@
 
 #include "dds/Conversions.hpp"
 #include "dds/MessageScanGeometry.hpp"
+#include "sensor/LidarGeometry.hpp"
 
 namespace uavslam::dds {
 namespace {
@@ -81,6 +82,37 @@ TEST(MessageScanGeometry, TheSensorsGeometryOrTheScansOwnLayoutOnTheSensorsMount
   EXPECT_TRUE(own->mount.translation().isApprox(Vec3(0.1, 0.0, 0.2)));
   EXPECT_LT(own->directions[0].z(), -0.9) << "the mirror's beams look down";
   EXPECT_EQ(own->directions[540].z(), 0.0);
+}
+
+// When each beam fired: a scan that says its time_increment (the simulator's, a SCIP 2.0
+// driver's) gives its geometry fire times, taken over the sensor file's sweep; the file's sweep
+// spreads over another layout's beams by angle; no word and no file's sweep: none.
+TEST(MessageScanGeometry, TheBeamsFireWhenTheScanOrTheSensorFileSays) {
+  LidarSpec lidar;  // 1080 beams over 270 deg
+  lidar.sweep_seconds = 0.01875;
+  Scan scan;
+  scan.geometry = make_scan_geometry(lidar);
+  scan.ranges = std::vector<float>(1080, 2.0f);
+  const double increment = 1.5 * kPi / 1079;
+  msg::LaserScan sent = to_msg(scan, -0.75 * kPi, increment, Source{"laser", "uav1"});
+  EXPECT_FLOAT_EQ(sent.time_increment(), static_cast<float>(0.01875 / 1079));
+
+  MessageScanGeometry plain;
+  const auto received = plain.for_message(sent);
+  ASSERT_EQ(received->fire_times.size(), 1080u);
+  EXPECT_NEAR(received->fire_times.back(), 0.01875, 1e-7);
+  EXPECT_EQ(plain.for_message(sent), received);
+  sent.time_increment(0.0f);
+  EXPECT_TRUE(plain.for_message(sent)->fire_times.empty());
+
+  MessageScanGeometry from_file(lidar);
+  EXPECT_NEAR(from_file.for_message(sent)->fire_times.back(), 0.01875, 1e-12);
+  const auto other = from_file.for_message(
+      scan_message(1081, static_cast<float>(-0.75 * kPi), static_cast<float>(kPi / 720)));
+  ASSERT_EQ(other->fire_times.size(), 1081u);
+  EXPECT_NEAR(other->fire_times.back(), 0.01875, 1e-8);  // 1080 steps of 0.25 degree
+  sent.time_increment(1e-5f);
+  EXPECT_NEAR(from_file.for_message(sent)->fire_times.back(), 1079 * 1e-5, 1e-9);
 }
 
 }  // namespace

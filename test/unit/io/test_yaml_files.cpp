@@ -317,6 +317,7 @@ void expect_default_slam_config(const SlamConfig& config) {
   const SlamConfig defaults;
   EXPECT_EQ(config.scan.subsample_every, defaults.scan.subsample_every);
   EXPECT_EQ(config.scan.floor_margin, defaults.scan.floor_margin);
+  EXPECT_EQ(config.scan.deskew, defaults.scan.deskew);
   EXPECT_EQ(config.icp.iterations, defaults.icp.iterations);
   EXPECT_EQ(config.icp.max_translation, defaults.icp.max_translation);
   EXPECT_EQ(config.icp.motion_prior, defaults.icp.motion_prior);
@@ -382,7 +383,7 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
 
 // The UAV's configuration is the seed's plus the motion model, the degeneracy analysis, the
 // seed's own suggestion of a periodic heading check, the gate on the motion prior, the robust
-// refinement, the floor strikes set aside and the back end.
+// refinement, the floor strikes set aside, the sweep's motion undone and the back end.
 TEST(SlamConfigFile,
      TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyAnchoredHeadingGateAndLines) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
@@ -397,8 +398,10 @@ TEST(SlamConfigFile,
   EXPECT_TRUE(config.loop_closure.enabled);
   EXPECT_GT(config.icp.robust_scale, 0.0);
   EXPECT_GT(config.scan.floor_margin, 0.0);
+  EXPECT_TRUE(config.scan.deskew);
   config.icp.robust_scale = SlamConfig{}.icp.robust_scale;
   config.scan.floor_margin = SlamConfig{}.scan.floor_margin;
+  config.scan.deskew = SlamConfig{}.scan.deskew;
   config.loop_closure.enabled = SlamConfig{}.loop_closure.enabled;
   config.icp.motion_prior = SlamConfig{}.icp.motion_prior;
   config.motion.fuse_velocity = SlamConfig{}.motion.fuse_velocity;
@@ -417,7 +420,7 @@ TEST_F(YamlFileTest, EmptySlamConfigHoldsTheDefaults) {
 
 TEST_F(YamlFileTest, SlamConfigReadsEveryKey) {
   const std::string path = write("slam.yaml", R"(
-scan: {subsample_every: 1, floor_margin: 0.15}
+scan: {subsample_every: 1, floor_margin: 0.15, deskew: true}
 icp:
   iterations: 20
   max_translation: 0.5
@@ -498,6 +501,7 @@ loop_closure:
   EXPECT_EQ(c.loop_closure.ambiguity_radius, 0.7);
   EXPECT_EQ(c.scan.subsample_every, 1);
   EXPECT_EQ(c.scan.floor_margin, 0.15);
+  EXPECT_TRUE(c.scan.deskew);
   EXPECT_EQ(c.icp.iterations, 20);
   EXPECT_EQ(c.icp.max_translation, 0.5);
   EXPECT_EQ(c.icp.max_error_after, 0.1);

@@ -101,7 +101,7 @@ TEST_F(FlightSimulatorTest, VelocityStreamIsTheTrueVelocityInTheImusHeadingFrame
 }
 
 // A late scan (faults.late_scan_every): stamped as the others, it sees the world from where the
-// body was late_scan_s before; the scans around it are on time.
+// body was late_scan_s before (its sweep too); the scans around it are on time.
 TEST_F(FlightSimulatorTest, ALateScanSeesTheWorldFromEarlier) {
   scenario_.lidar.range_noise_std = 0.0;
   scenario_.faults.late_scan_every = 4;
@@ -114,7 +114,7 @@ TEST_F(FlightSimulatorTest, ALateScanSeesTheWorldFromEarlier) {
     const double stamp = scans[k].stamp;
     EXPECT_EQ(stamp, simulator.start_time() + double(k) / scenario_.lidar.rate_hz);
     const bool late = k % 4 == 3;
-    const Scan expected = lidar.scan_at(trajectory.pose_at(late ? stamp - 0.5 : stamp), stamp, k);
+    const Scan expected = lidar.scan_along(trajectory, late ? stamp - 0.5 : stamp, stamp, k);
     EXPECT_EQ(scans[k].ranges, expected.ranges) << "scan " << k << (late ? " (late)" : "");
   }
 }

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -5,6 +6,7 @@
 
 #include "SimTestHelpers.hpp"
 #include "core/Angles.hpp"
+#include "core/ScanProjection.hpp"
 #include "sim/LidarSimulator.hpp"
 #include "sim/Trajectory.hpp"
 #include "unit/sensor/ThreeBeamLidar.hpp"
@@ -93,6 +95,32 @@ TEST(LidarSimulator, EachBeamOfASweepIsFiredFromWhereTheVehicleWasThen) {
   EXPECT_GT(std::abs(swept.ranges[2] - at_start.ranges[2]), 0.01);
   const Scan unswept = instant.scan_along(turning, taken, taken, 0);
   EXPECT_FLOAT_EQ(unswept.ranges[2], at_start.ranges[2]);
+}
+
+// A UTM-30LX's 18.75 ms sweep from a vehicle turning at ~1.2 rad/s and flying at ~1.7 m/s,
+// placed with the body's rate and velocity (core/ScanProjection's deskew), lies on the room's
+// walls; placed from the stamp's pose alone, the sweep's far end misses them by centimetres.
+TEST(LidarSimulator, ASweepPlacedWithTheBodysMotionLiesOnTheWalls) {
+  const World world(testing::empty_room());
+  const Trajectory flight({{0.0, Vec3(3.0, 3.0, 1.5), 0.0}, {2.0, Vec3(5.0, 4.0, 1.5), 90.0}});
+  LidarSpec spec;
+  spec.range_noise_std = 0.0;
+  spec.sweep_seconds = 0.01875;
+  LidarSimulator lidar(spec, world, 1);
+  const double taken = 1.0;
+  const Scan scan = lidar.scan_along(flight, taken, taken, 0);
+  const Pose at_stamp = flight.pose_at(taken);
+  const double middle = taken + spec.sweep_seconds / 2.0;
+  const SweepMotion sweep{flight.angular_velocity_at(middle), flight.velocity_at(middle)};
+  const auto farthest_off_the_walls = [&](const SweepMotion& motion) {
+    double farthest = 0.0;
+    for (const Vec3& p : project_scan(scan, at_stamp.orientation, motion).points) {
+      farthest = std::max(farthest, world.distance_to_nearest_surface(p + at_stamp.position));
+    }
+    return farthest;
+  };
+  EXPECT_LT(farthest_off_the_walls(sweep), 0.002);
+  EXPECT_GT(farthest_off_the_walls({}), 0.05);
 }
 
 TEST(LidarSimulator, RangeNoiseHasTheConfiguredSpread) {
