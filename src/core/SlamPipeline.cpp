@@ -276,8 +276,13 @@ SweepMotion SlamPipeline::sweep_motion(const Scan& scan, const Vec3& predicted) 
   if (const std::optional<Vec3> rate = imu_.angular_velocity_at(middle)) {
     sweep.angular_velocity = *rate;
   }
+  // A motion over less time than the sweep takes says more of the stamps' jitter than of the
+  // velocity (a log's scans 1 ms apart): then the turn alone.
   const double since_pose = scan.stamp - pose_.stamp;
-  if (!map_.empty() && since_pose > 0.0) sweep.velocity = predicted / since_pose;
+  const double sweep_seconds = std::abs(fire_times.back() - fire_times.front());
+  if (!map_.empty() && since_pose >= sweep_seconds && since_pose > 0.0) {
+    sweep.velocity = predicted / since_pose;
+  }
   return sweep;
 }
 
