@@ -26,7 +26,7 @@ struct LidarSpec {
   double range_noise_std = 0.01;  // m, Gaussian
   // s from the first beam to the last (a UTM-30LX's 270 of 360 degrees at 40 Hz: 18.75 ms); a
   // vehicle that moves or turns meanwhile sees each beam from where it was then. 0: every beam at
-  // the scan's stamp (the scenarios' default).
+  // the scan's stamp (the default; the shipped scenarios and sensor file give the UTM-30LX's).
   double sweep_seconds = 0.0;
   Vec3 mount_position{0.0, 0.0, 0.1};
   Vec3 mount_rpy_deg = Vec3::Zero();
