@@ -200,6 +200,19 @@ class MatcherNode {
                 << "'s lidar " << geometries_.sensor_geometry()->directions.size()
                 << ": matching them with their own layout, mounted as the sensor file says\n";
     }
+    if (slam_.config().scan.deskew && !sweep_noted_) {
+      sweep_noted_ = true;
+      if (geometry->fire_times.empty()) {
+        std::cerr << "slam_matcher: scan.deskew is on, but the scans say nothing of when their "
+                     "beams fire (no time_increment, no lidar.sweep_seconds in the sensor file): "
+                     "every beam is placed from the scan's stamp\n";
+      } else {
+        std::cerr << "slam_matcher: each beam placed from where the vehicle was when it fired "
+                     "(scan.deskew), over a sweep of "
+                  << std::abs(geometry->fire_times.back() - geometry->fire_times.front()) * 1e3
+                  << " ms\n";
+      }
+    }
     return geometry;
   }
 
@@ -249,6 +262,7 @@ class MatcherNode {
   std::uint64_t poses_ = 0;
   std::uint64_t dead_reckoned_ = 0;
   bool layout_noted_ = false;
+  bool sweep_noted_ = false;  // said once whether the sweep's motion is undone
 };
 
 void apply_own_config(const CLI::App& app, const io::YamlReader& section, MatcherOptions& o) {
