@@ -209,8 +209,7 @@ class MatcherNode {
       } else {
         std::cerr << "slam_matcher: each beam placed from where the vehicle was when it fired "
                      "(scan.deskew), over a sweep of "
-                  << std::abs(geometry->fire_times.back() - geometry->fire_times.front()) * 1e3
-                  << " ms\n";
+                  << geometry->sweep_seconds() * 1e3 << " ms\n";
       }
     }
     return geometry;

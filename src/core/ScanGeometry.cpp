@@ -23,6 +23,12 @@ void ScanGeometry::sweep_beams_in_order(double time_increment) {
     fire_times.push_back(time_increment * double(i));
 }
 
+double ScanGeometry::sweep_seconds() const {
+  if (fire_times.empty()) return 0.0;
+  const auto [first, last] = std::minmax_element(fire_times.begin(), fire_times.end());
+  return *last - *first;
+}
+
 bool ScanGeometry::has_vertical_beams() const {
   return std::any_of(directions.begin(), directions.end(),
                      [&](const Vec3& d) { return is_vertical(mount.linear() * d); });

@@ -279,8 +279,7 @@ SweepMotion SlamPipeline::sweep_motion(const Scan& scan, const Vec3& predicted) 
   // A motion over less time than the sweep takes says more of the stamps' jitter than of the
   // velocity (a log's scans 1 ms apart): then the turn alone.
   const double since_pose = scan.stamp - pose_.stamp;
-  const double sweep_seconds = std::abs(fire_times.back() - fire_times.front());
-  if (!map_.empty() && since_pose >= sweep_seconds && since_pose > 0.0) {
+  if (!map_.empty() && since_pose >= scan.geometry->sweep_seconds() && since_pose > 0.0) {
     sweep.velocity = predicted / since_pose;
   }
   return sweep;

@@ -71,6 +71,8 @@ struct ScanGeometry {
   // Beam i fires time_increment * i after the stamp (sensor_msgs/LaserScan's time_increment);
   // 0 clears the fire times.
   void sweep_beams_in_order(double time_increment);
+  // s from the first beam fired to the last; 0 without fire times.
+  double sweep_seconds() const;
 
   // Some beams point more up or down than sideways on the body (is_vertical: a floor mirror, the
   // rings of a 3D scanner): the sensor can measure height. A planar scanner's cannot.
