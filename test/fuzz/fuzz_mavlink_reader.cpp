@@ -30,6 +30,9 @@ void decode(const uavslam::mavlink::Frame& frame) {
     case kAttitudeQuaternion:
       decode_attitude_quaternion(frame.payload);
       break;
+    case kLocalPositionNed:
+      decode_local_position_ned(frame.payload);
+      break;
     case kVisionPositionEstimate:
       decode_vision_position_estimate(frame.payload);
       break;
@@ -49,7 +52,9 @@ void decode(const uavslam::mavlink::Frame& frame) {
       decode_command_ack(frame.payload);
       break;
     default:
-      std::abort();  // the reader hands on known messages only
+      // The reader hands on known messages only. Each message CommonMessages defines has a seed in
+      // corpus/mavlink, so one added there without its case here fails on the seeds, not by luck.
+      std::abort();
   }
 }
 
