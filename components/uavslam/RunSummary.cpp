@@ -134,6 +134,13 @@ std::size_t heights_from_floor(const SlamRun& run) {
   return count;
 }
 
+// Scans whose blind direction a structure across it fixed (degeneracy.search_window).
+std::size_t blind_fixed(const SlamRun& run) {
+  std::size_t count = 0;
+  for (const ScanTrace& t : run.trace) count += t.blind_fixed;
+  return count;
+}
+
 FloorStrikes floor_strikes(const SlamRun& run) {
   FloorStrikes strikes;
   for (const ScanTrace& t : run.trace) {
@@ -160,6 +167,10 @@ void print_summary(std::ostream& out, const RunSummary& s) {
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
   print_tracking(out, run.tracking);
+  if (const std::size_t fixed = blind_fixed(run); fixed > 0) {
+    out << "  blind fixed       " << fixed
+        << " scans' blind direction fixed by a structure across it (a jamb, an end wall)\n";
+  }
   if (run.loops) print_loops(out, *run.loops, run.backend_seconds);
   if (s.errors) {
     print_errors(out, *s.errors);
@@ -230,7 +241,8 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
                 {"rejected", run.scans_in - s.accepted()},
                 {"rejected_by_reason", rejected},
                 {"floor_strikes", {{"points", strikes.points}, {"scans", strikes.scans}}},
-                {"height_from_floor", heights_from_floor(run)}};
+                {"height_from_floor", heights_from_floor(run)},
+                {"blind_fixed", blind_fixed(run)}};
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
   j["tracking"] = to_json(run.tracking);
   if (!run.nees.empty()) {

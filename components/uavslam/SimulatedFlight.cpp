@@ -143,7 +143,8 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
                          report.pose.position, truth, run.scan_seconds.back() * 1e3,
                          report.seen.degenerate, report.seen.weakest_fraction,
                          report.absolute_covariance().diagonal().cwiseSqrt(), report.prior_distance,
-                         result.tracking, report.floor_returns, report.height_from_floor, nees});
+                         result.tracking, report.floor_returns, report.height_from_floor, nees,
+                         report.blind_fixed});
     if (progress && i % 400 == 0) progress(i, log.scans.size());
   }
   if (slam.finish()) {

@@ -57,6 +57,7 @@ struct ScanTrace {
   std::size_t floor_returns = 0;   // level beams' points set aside as floor strikes
   bool height_from_floor = false;  // the height measured from the floor's level (floor.level_gate)
   std::optional<eval::Nees> nees;  // of the reported position against the truth
+  bool blind_fixed = false;        // a structure fixed the blind direction (search_window)
 };
 
 struct SlamRun {

@@ -191,6 +191,13 @@ struct SlamConfig {
   struct Degeneracy {
     double threshold = 0.0;   // 0: no analysis (the seed trusts every match in every direction)
     double min_sigma = 0.01;  // m; the pairs' residual spread is taken as at least this
+    // The horizontal direction left blind searched for a structure that fixes it
+    // (extensions/BlindDirectionSearch): over the prior's 3 sigma, at most this far either way
+    // (m; 0 = never searched: the prior keeps it).
+    double search_window = 0.0;
+    double search_step = 0.02;       // m between the shifts searched
+    double search_sigma = 0.02;      // m: a fix's error is taken as at least this
+    double search_uniqueness = 0.5;  // another minimum's depth over the fix's, at most
   } degeneracy;
 
   // The motion prior's noise (icp.motion_prior imu or odometry): how fast its uncertainty grows.

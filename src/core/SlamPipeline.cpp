@@ -1,11 +1,14 @@
 #include "core/SlamPipeline.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "core/Angles.hpp"
 #include "core/Heading.hpp"
+#include "core/extensions/BlindDirectionSearch.hpp"
 #include "core/extensions/FloorReturns.hpp"
 #include "core/extensions/PriorAgreement.hpp"
 #include "core/extensions/Relocalisation.hpp"
@@ -68,7 +71,8 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   report.sweep = sweep_motion(scan, predicted);
   ProjectedScan projected = project(scan, orientation, report);
   // Step 2: every k-th point.
-  const ScanPoints points = scan_points(projected);
+  const std::vector<Vec3> normals = wall_normals(projected);
+  const ScanPoints points = scan_points(projected, normals);
   report.points_used = points.points.size();
   if (report.points_used < kMinPoints) {
     report.outcome = ScanOutcome::TooFewPoints;
@@ -107,12 +111,14 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   if (match.outcome != ScanOutcome::Accepted) return carried_by_prior(report, start, prior);
 
   // Beyond the seed: what the scan saw, and whether the match agrees with the motion prior there.
-  const Vec3 position = keep_what_the_scan_saw(report, match, start, prior, *scan.geometry);
+  Vec3 measured = match.position;
+  const Vec3 position = keep_what_the_scan_saw(report, match, {projected, normals}, start, prior,
+                                               *scan.geometry, measured);
   const std::optional<PriorDistance> distance =
-      distance_from_prior(report, match, start, prediction, prior);
+      distance_from_prior(report, measured, start, prediction, prior);
   if (distance && !report.relocalised) {
     report.prior_distance = distance->sigmas;
-    const Vec3 correction = match.position - start.position;
+    const Vec3 correction = measured - start.position;
     // The gate measures in the learnt scales: none until they have settled.
     const PriorGate::Verdict verdict =
         match_noise_.settled() ? gate_.judge(*distance, correction, report.seen.observed,
@@ -219,12 +225,12 @@ ScanReport SlamPipeline::carried_by_prior(ScanReport& report, const Pose& start,
 // MatchNoise has learnt to scale it, the prior's own (`prior`). None without the degeneracy
 // analysis (no match covariance) or a prior with a covariance.
 std::optional<PriorDistance> SlamPipeline::distance_from_prior(const ScanReport& report,
-                                                               const MatchResult& match,
+                                                               const Vec3& measured,
                                                                const Pose& start,
                                                                const MotionPrediction& prediction,
                                                                const Eigen::Matrix3d& prior) const {
   if (!prediction.covariance || config_.degeneracy.threshold <= 0.0) return std::nullopt;
-  return uavslam::distance_from_prior(match.position - start.position, report.seen.observed,
+  return uavslam::distance_from_prior(measured - start.position, report.seen.observed,
                                       match_noise_.scaled(report.seen.covariance) + prior);
 }
 
@@ -297,21 +303,24 @@ ProjectedScan SlamPipeline::project(const Scan& scan, const Eigen::Quaterniond& 
   return projected;
 }
 
-// Steps 1-2's points, thinned to every k-th, with each point's wall normal when the degeneracy
-// analysis needs it.
-ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected) const {
+// Every beam's wall normal when the degeneracy analysis needs them (none otherwise): every
+// neighbour within the gap (0.2 m), up to 20 beams away. A line fitted over a few centimetres of a
+// near wall is noise (0.25 degree beams lie 4 mm apart at 1 m; ranges err by about 1 cm), and noise
+// in the normals reads as information along the wall.
+std::vector<Vec3> SlamPipeline::wall_normals(const ProjectedScan& projected) const {
+  if (config_.degeneracy.threshold <= 0.0) return {};
+  SurfaceNormalOptions wide;
+  wide.half_window = 20;
+  return estimate_normals(projected.points, projected.vertical, wide);
+}
+
+// Steps 1-2's points, thinned to every k-th, with each point's wall normal where known.
+ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected,
+                                     const std::vector<Vec3>& normals) const {
   const int k = config_.scan.subsample_every;
   ScanPoints points = weigh_points(keep_every_kth(projected.points, k),
                                    keep_every_kth(projected.vertical, k), config_.icp.split_axes);
-  if (config_.degeneracy.threshold > 0.0) {
-    // Every neighbour within the gap (0.2 m), up to 20 beams away: a line fitted over a few
-    // centimetres of a near wall is noise (0.25 degree beams lie 4 mm apart at 1 m; ranges err by
-    // about 1 cm), and noise in the normals reads as information along the wall.
-    SurfaceNormalOptions wide;
-    wide.half_window = 20;
-    points.normals =
-        keep_every_kth(estimate_normals(projected.points, projected.vertical, wide), k);
-  }
+  if (!normals.empty()) points.normals = keep_every_kth(normals, k);
   return points;
 }
 
@@ -332,13 +341,22 @@ bool SlamPipeline::yaw_estimated(const MatchResult& match) const {
 // Height counts only for a sensor with floor beams, and with the per-axis weights that give them
 // to z (icp.split_axes): a planar scanner's z is not the scan's to see, nor degenerate.
 Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult& match,
-                                          const Pose& start, const Eigen::Matrix3d& prior,
-                                          const ScanGeometry& sensor) {
+                                          const EveryBeam& beams, const Pose& start,
+                                          const Eigen::Matrix3d& prior, const ScanGeometry& sensor,
+                                          Vec3& measured) {
   if (config_.degeneracy.threshold <= 0.0) return match.position;
   const bool measures_height = config_.icp.split_axes && sensor.has_vertical_beams();
-  report.seen = observability(scan_information(match.pairs, match.position, yaw_estimated(match),
-                                               config_.degeneracy.min_sigma),
-                              config_.degeneracy.threshold, measures_height);
+  const ScanInformation information = scan_information(
+      match.pairs, match.position, yaw_estimated(match), config_.degeneracy.min_sigma);
+  report.seen = observability(information, config_.degeneracy.threshold, measures_height);
+  Vec3 position = start.position + report.seen.observed * (match.position - start.position);
+  if (const std::optional<double> along =
+          search_blind_direction(report, match, beams, start, prior, information.sigma)) {
+    // What the scan measured along e is the fix, not where the ICP slid.
+    const Vec3& e = report.seen.weakest;
+    position += *along * e;
+    measured += e * (*along - e.dot(match.position - start.position));
+  }
   const Eigen::Matrix3d blind = Eigen::Matrix3d::Identity() - report.seen.observed;
   report.covariance =
       match_noise_.scaled(report.seen.covariance) + blind * prior * blind.transpose();
@@ -349,7 +367,69 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
     in_blind_stretch_ = true;
     ++blind_stretches_;
   }
-  return start.position + report.seen.observed * (match.position - start.position);
+  return position;
+}
+
+// Beyond the seed (extensions/BlindDirectionSearch): the horizontal direction the scan left blind
+// (the other one seen) searched for a structure that fixes it, over the prior's 3 sigma along it
+// (at most degeneracy.search_window). Found: the direction counts as seen, with the fix's
+// variance sigma^2 / sum_i (n_i . e)^2, and the offset from the start along it is returned.
+std::optional<double> SlamPipeline::search_blind_direction(
+    ScanReport& report, const MatchResult& match, const EveryBeam& beams, const Pose& start,
+    const Eigen::Matrix3d& prior, double sigma) {
+  const SlamConfig::Degeneracy& options = config_.degeneracy;
+  Observability& seen = report.seen;
+  const Vec3& e = seen.weakest;
+  const bool one_blind =
+      seen.observed.topLeftCorner<2, 2>().trace() > 0.5 && (seen.observed * e).norm() < 0.5;
+  if (options.search_window <= 0.0 || !one_blind) return std::nullopt;
+  const double half_width =
+      std::min(options.search_window, 3.0 * std::sqrt(std::max(e.dot(prior * e), 0.0)));
+  if (half_width < 2.0 * options.search_step) return std::nullopt;  // the prior knows it already
+  // Every level beam (a jamb's few beams are too few thinned), turned and placed as the match put
+  // the scan across e, and at the start along it: q = p_match + R(yaw) p + e e.(p_start - p_match).
+  const Eigen::Matrix3d turn = yaw_rotation(match.yaw).toRotationMatrix();
+  const Vec3 origin = match.position + e * e.dot(start.position - match.position);
+  ScanPoints level;
+  for (std::size_t i = 0; i < beams.projected.points.size() && i < beams.normals.size(); ++i) {
+    if (beams.projected.vertical[i] || beams.normals[i].isZero()) continue;
+    level.points.push_back(origin + turn * beams.projected.points[i]);
+    level.weights.push_back(Vec3(1.0, 1.0, 0.0));
+    level.normals.push_back(turn * beams.normals[i]);
+  }
+  BlindSearchOptions search;
+  search.half_width = half_width;
+  search.step = options.search_step;
+  search.cap = 3.0 * sigma;
+  search.max_distance = config_.icp.max_correspondence_distance;
+  search.uniqueness = options.search_uniqueness;
+  // Pairs only with keyframes placed along e at least twice as well as the prior places the
+  // vehicle: a keyframe made blind along e carries the drift the search is to end, and its copy of
+  // a door jamb would only confirm it.
+  const double prior_variance = e.dot(prior * e);
+  std::vector<bool> placed;
+  for (std::size_t k = 0; k < map_uncertainty_.keyframes(); ++k) {
+    const Eigen::Matrix3d kc = map_uncertainty_.keyframe_covariance(k).topLeftCorner<3, 3>();
+    placed.push_back(e.dot(kc * e) <= 0.25 * prior_variance);
+  }
+  const MapPointFilter usable = [&](std::size_t index) {
+    const std::optional<std::size_t> k = map_uncertainty_.keyframe_of(index);
+    return k && placed[*k];
+  };
+  const std::optional<DirectionFix> fix =
+      uavslam::search_blind_direction(map_, level, e, search, usable);
+  if (!fix) return std::nullopt;
+  report.blind_fixed = true;
+  seen.observed += e * e.transpose();
+  // The scan's noise averages over its pairs, the map's only over the few map points they took
+  // (a far jamb's handful): sigma^2 (1 / sum J^2 + 1 / map points), and at least
+  // search_sigma^2: such fixes at take-off err by 1-2 cm where that says 3-5 mm (corridor.yaml).
+  const double variance =
+      std::max(sigma * sigma * (1.0 / fix->information + 1.0 / double(fix->map_points)),
+               options.search_sigma * options.search_sigma);
+  seen.covariance += e * e.transpose() * variance;
+  --seen.degenerate;
+  return fix->offset;
 }
 
 // How well the map the scan matched is placed (extensions/MapUncertainty), over (x, y, z, yaw),
@@ -528,16 +608,47 @@ bool SlamPipeline::moved_enough_for_map_update(const Pose& pose) const {
          moved.head<2>().norm() > config_.map.keyframe_lateral || turned;
 }
 
+// Beyond the seed (degeneracy.search_window): the beams that face the direction the scan sees
+// least, when it sees it too little (degeneracy.threshold): a door jamb's ten beams, which thinning
+// to every k-th leaves two of, too few for a search along a corridor to tell it from noise.
+std::vector<std::size_t> SlamPipeline::facing_weakest(const ProjectedScan& projected) const {
+  if (config_.degeneracy.search_window <= 0.0) return {};
+  const std::vector<Vec3> normals = wall_normals(projected);
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  std::size_t count = 0;
+  for (const Vec3& n : normals) {
+    if (n.isZero()) continue;
+    scatter += n.head<2>() * n.head<2>().transpose();
+    ++count;
+  }
+  if (count == 0) return {};
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(scatter);
+  if (solver.eigenvalues()[0] / double(count) >= config_.degeneracy.threshold) return {};
+  const Eigen::Vector2d weakest = solver.eigenvectors().col(0);
+  const double facing_cosine = BlindSearchOptions{}.facing;  // the search's own choice of beams
+  std::vector<std::size_t> facing;
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    if (std::abs(normals[i].head<2>().dot(weakest)) >= facing_cosine) facing.push_back(i);
+  }
+  return facing;
+}
+
 // Step 5: the aligned scan, thinned to every k-th point, into the map at the new position; with
 // the point-to-line metric, each point's wall normal from its neighbours along the full scan.
 void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected) {
   const int k = config_.map.subsample_every;
   Points aligned = keep_every_kth(projected.points, k);
-  apply_transform(aligned, pose_.position);
   std::vector<Vec3> normals;
   if (config_.icp.metric == IcpMetric::PointToLine) {
-    normals = keep_every_kth(estimate_normals(projected.points, projected.vertical), k);
+    const std::vector<Vec3> every = estimate_normals(projected.points, projected.vertical);
+    normals = keep_every_kth(every, k);
+    for (const std::size_t i : facing_weakest(projected)) {
+      if (i % std::size_t(k) == 0) continue;
+      aligned.push_back(projected.points[i]);
+      normals.push_back(every[i]);
+    }
   }
+  apply_transform(aligned, pose_.position);
   const auto [drift, applied] = keyframe_drift();
   const KeyframeError error = keyframe_error(report);
   map_uncertainty_.add_keyframe(map_.size(), pose_.position, error.own, drift, applied,

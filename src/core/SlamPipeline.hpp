@@ -63,6 +63,9 @@ struct ScanReport {
   // Beyond the seed (degeneracy.threshold > 0): what the scan saw of each direction, and the
   // pose's covariance: the match's in the directions it fixed, the motion prior's in the others.
   Observability seen;
+  // The direction the scan left blind was searched and a structure across it fixed it
+  // (degeneracy.search_window; extensions/BlindDirectionSearch): `seen` counts it as seen.
+  bool blind_fixed = false;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // m^2, of pose.position in the map
   // m^2: how well the map points the match paired with are placed (extensions/MapUncertainty);
   // for a pose carried by the prior, the last match's.
@@ -167,7 +170,7 @@ class SlamPipeline {
   SweepMotion sweep_motion(const Scan& scan, const Vec3& predicted) const;
   ProjectedScan project(const Scan& scan, const Eigen::Quaterniond& orientation,
                         ScanReport& report) const;
-  ScanPoints scan_points(const ProjectedScan& projected) const;
+  ScanPoints scan_points(const ProjectedScan& projected, const std::vector<Vec3>& normals) const;
   MapError map_part(const ScanReport& report, const MatchResult& match) const;
   struct KeyframeError {
     CorrelatedError inherited;  // the map's, where the scan matched
@@ -192,13 +195,24 @@ class SlamPipeline {
   Eigen::Matrix3d predicted_covariance(const MotionPrediction& prediction, double stamp) const;
   // `prior`: predicted_covariance at the scan, computed once per scan for these.
   ScanReport carried_by_prior(ScanReport& report, const Pose& start, const Eigen::Matrix3d& prior);
-  std::optional<PriorDistance> distance_from_prior(const ScanReport& report,
-                                                   const MatchResult& match, const Pose& start,
+  std::optional<PriorDistance> distance_from_prior(const ScanReport& report, const Vec3& measured,
+                                                   const Pose& start,
                                                    const MotionPrediction& prediction,
                                                    const Eigen::Matrix3d& prior) const;
   bool yaw_estimated(const MatchResult& match) const;
-  Vec3 keep_what_the_scan_saw(ScanReport& report, const MatchResult& match, const Pose& start,
-                              const Eigen::Matrix3d& prior, const ScanGeometry& sensor);
+  // Every beam of the scan, unthinned, with its wall normal (empty without the analysis).
+  struct EveryBeam {
+    const ProjectedScan& projected;
+    const std::vector<Vec3>& normals;
+  };
+  std::vector<Vec3> wall_normals(const ProjectedScan& projected) const;
+  std::vector<std::size_t> facing_weakest(const ProjectedScan& projected) const;
+  Vec3 keep_what_the_scan_saw(ScanReport& report, const MatchResult& match, const EveryBeam& beams,
+                              const Pose& start, const Eigen::Matrix3d& prior,
+                              const ScanGeometry& sensor, Vec3& measured);
+  std::optional<double> search_blind_direction(ScanReport& report, const MatchResult& match,
+                                               const EveryBeam& beams, const Pose& start,
+                                               const Eigen::Matrix3d& prior, double sigma);
 
   SlamConfig config_;
   ImuBuffer imu_;

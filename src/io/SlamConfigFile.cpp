@@ -184,6 +184,22 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.degeneracy.min_sigma = v.as_double(NumberRange::positive());
        }},
+      {"degeneracy", "search_window",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.degeneracy.search_window = v.as_double(NumberRange::non_negative());
+       }},
+      {"degeneracy", "search_step",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.degeneracy.search_step = v.as_double(NumberRange::positive());
+       }},
+      {"degeneracy", "search_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.degeneracy.search_sigma = v.as_double(NumberRange::positive());
+       }},
+      {"degeneracy", "search_uniqueness",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.degeneracy.search_uniqueness = v.as_double(NumberRange::between(0.0, 1.0));
+       }},
       {"motion", "accel_noise_density",
        [](SlamConfig& c, const YamlReader& v) {
          c.motion.accel_noise_density = v.as_double(NumberRange::non_negative());

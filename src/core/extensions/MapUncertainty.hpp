@@ -82,6 +82,10 @@ class MapUncertainty {
   const std::vector<std::size_t>& first_points() const { return first_points_; }
   // Each keyframe's body position, in keyframe order.
   const std::vector<Vec3>& positions() const { return positions_; }
+  // Keyframe k's own error's covariance over (x, y, z, yaw): how well its points are placed.
+  Eigen::Matrix4d keyframe_covariance(std::size_t k) const { return errors_[k].covariance(); }
+  // The keyframe that added map point `index`; none before the first keyframe's points.
+  std::optional<std::size_t> keyframe_of(std::size_t index) const;
 
   // The same keyframes, in the same order, now starting at these map indices and taken at these
   // positions (the map was rebuilt); throws std::invalid_argument for another count.
@@ -123,9 +127,6 @@ class MapUncertainty {
                          const Eigen::Vector2d& scan_drift, MapError& error) const;
   void joint_match(const Grouped& grouped, const Vec3& position, MapError& error) const;
   void add_keyframe_share(std::size_t k, const Eigen::Matrix4d& A, MapError& error) const;
-
-  // The keyframe that added map point `index`; none before the first keyframe's points.
-  std::optional<std::size_t> keyframe_of(std::size_t index) const;
 
   std::vector<std::size_t> first_points_;  // ascending
   std::vector<Vec3> positions_;            // p_k

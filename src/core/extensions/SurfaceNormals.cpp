@@ -28,7 +28,9 @@ Vec3 normal_at(const Points& points, const std::vector<bool>& vertical, std::siz
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(scatter);
   const Eigen::Vector2d values = solver.eigenvalues();  // ascending
   if (values[1] <= 0.0 || values[0] > options.max_flatness * values[1]) return Vec3::Zero();
-  const Eigen::Vector2d normal = solver.eigenvectors().col(0);
+  Eigen::Vector2d normal = solver.eigenvectors().col(0);
+  // Facing the scanner (the points are relative to it): a wall's two faces are told apart.
+  if (normal.dot(points[i].head<2>()) > 0.0) normal = -normal;
   return {normal.x(), normal.y(), 0.0};
 }
 

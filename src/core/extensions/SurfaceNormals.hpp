@@ -16,8 +16,9 @@ struct SurfaceNormalOptions {
   double max_flatness = 0.1;       // smallest / largest scatter eigenvalue above this: no line
 };
 
-// One unit normal (z = 0) per point, or zero where no line fits (too few neighbours, a corner, a
-// beam that points up or down). `vertical` marks beams whose points carry no wall.
+// One unit normal (z = 0) per point, facing the scanner (the points are relative to it), or zero
+// where no line fits (too few neighbours, a corner, a beam that points up or down). `vertical`
+// marks beams whose points carry no wall.
 std::vector<Vec3> estimate_normals(const Points& ordered_points, const std::vector<bool>& vertical,
                                    const SurfaceNormalOptions& options = {});
 
