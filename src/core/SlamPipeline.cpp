@@ -30,6 +30,23 @@ double angle_between(double a, double b) {
   return std::abs(wrap_angle(a - b));
 }
 
+// Every level beam with a wall normal (a jamb's few beams are too few thinned), turned and placed
+// as the match put the scan across e, and at the start along it:
+//   q = p_match + R(yaw) p + e e.(p_start - p_match)
+ScanPoints level_beams_at_start(const ProjectedScan& projected, const std::vector<Vec3>& normals,
+                                const MatchResult& match, const Vec3& start, const Vec3& e) {
+  const Eigen::Matrix3d turn = yaw_rotation(match.yaw).toRotationMatrix();
+  const Vec3 origin = match.position + e * e.dot(start - match.position);
+  ScanPoints level;
+  for (std::size_t i = 0; i < projected.points.size() && i < normals.size(); ++i) {
+    if (projected.vertical[i] || normals[i].isZero()) continue;
+    level.points.push_back(origin + turn * projected.points[i]);
+    level.weights.emplace_back(1.0, 1.0, 0.0);
+    level.normals.push_back(turn * normals[i]);
+  }
+  return level;
+}
+
 }  // namespace
 
 SlamPipeline::SlamPipeline(const SlamConfig& config, const Vec3& initial_position)
@@ -383,41 +400,17 @@ std::optional<double> SlamPipeline::search_blind_direction(
   const bool one_blind =
       seen.observed.topLeftCorner<2, 2>().trace() > 0.5 && (seen.observed * e).norm() < 0.5;
   if (options.search_window <= 0.0 || !one_blind) return std::nullopt;
-  const double half_width =
-      std::min(options.search_window, 3.0 * std::sqrt(std::max(e.dot(prior * e), 0.0)));
-  if (half_width < 2.0 * options.search_step) return std::nullopt;  // the prior knows it already
-  // Every level beam (a jamb's few beams are too few thinned), turned and placed as the match put
-  // the scan across e, and at the start along it: q = p_match + R(yaw) p + e e.(p_start - p_match).
-  const Eigen::Matrix3d turn = yaw_rotation(match.yaw).toRotationMatrix();
-  const Vec3 origin = match.position + e * e.dot(start.position - match.position);
-  ScanPoints level;
-  for (std::size_t i = 0; i < beams.projected.points.size() && i < beams.normals.size(); ++i) {
-    if (beams.projected.vertical[i] || beams.normals[i].isZero()) continue;
-    level.points.push_back(origin + turn * beams.projected.points[i]);
-    level.weights.push_back(Vec3(1.0, 1.0, 0.0));
-    level.normals.push_back(turn * beams.normals[i]);
-  }
+  const double prior_variance = std::max(e.dot(prior * e), 0.0);
   BlindSearchOptions search;
-  search.half_width = half_width;
+  search.half_width = std::min(options.search_window, 3.0 * std::sqrt(prior_variance));
+  if (search.half_width < 2.0 * options.search_step) return std::nullopt;  // the prior knows it
   search.step = options.search_step;
   search.cap = 3.0 * sigma;
   search.max_distance = config_.icp.max_correspondence_distance;
   search.uniqueness = options.search_uniqueness;
-  // Pairs only with keyframes placed along e at least twice as well as the prior places the
-  // vehicle: a keyframe made blind along e carries the drift the search is to end, and its copy of
-  // a door jamb would only confirm it.
-  const double prior_variance = e.dot(prior * e);
-  std::vector<bool> placed;
-  for (std::size_t k = 0; k < map_uncertainty_.keyframes(); ++k) {
-    const Eigen::Matrix3d kc = map_uncertainty_.keyframe_covariance(k).topLeftCorner<3, 3>();
-    placed.push_back(e.dot(kc * e) <= 0.25 * prior_variance);
-  }
-  const MapPointFilter usable = [&](std::size_t index) {
-    const std::optional<std::size_t> k = map_uncertainty_.keyframe_of(index);
-    return k && placed[*k];
-  };
-  const std::optional<DirectionFix> fix =
-      uavslam::search_blind_direction(map_, level, e, search, usable);
+  const std::optional<DirectionFix> fix = uavslam::search_blind_direction(
+      map_, level_beams_at_start(beams.projected, beams.normals, match, start.position, e), e,
+      search, placed_better_than(e, prior_variance));
   if (!fix) return std::nullopt;
   report.blind_fixed = true;
   seen.observed += e * e.transpose();
@@ -430,6 +423,21 @@ std::optional<double> SlamPipeline::search_blind_direction(
   seen.covariance += e * e.transpose() * variance;
   --seen.degenerate;
   return fix->offset;
+}
+
+// The map points of keyframes placed along e at least twice as well as the prior places the
+// vehicle (variance a quarter of prior_variance): a keyframe made blind along e carries the drift
+// a search is to end, and its copy of a door jamb would only confirm it.
+MapPointFilter SlamPipeline::placed_better_than(const Vec3& e, double prior_variance) const {
+  std::vector<bool> placed;
+  for (std::size_t k = 0; k < map_uncertainty_.keyframes(); ++k) {
+    const Eigen::Matrix3d own = map_uncertainty_.keyframe_covariance(k).topLeftCorner<3, 3>();
+    placed.push_back(e.dot(own * e) <= 0.25 * prior_variance);
+  }
+  return [this, placed = std::move(placed)](std::size_t index) {
+    const std::optional<std::size_t> k = map_uncertainty_.keyframe_of(index);
+    return k && placed[*k];
+  };
 }
 
 // How well the map the scan matched is placed (extensions/MapUncertainty), over (x, y, z, yaw),

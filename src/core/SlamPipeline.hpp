@@ -17,6 +17,7 @@
 #include "core/ScanProjection.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
+#include "core/extensions/BlindDirectionSearch.hpp"
 #include "core/extensions/FloorLevel.hpp"
 #include "core/extensions/HeadingAnchor.hpp"
 #include "core/extensions/HeadingRate.hpp"
@@ -213,6 +214,7 @@ class SlamPipeline {
   std::optional<double> search_blind_direction(ScanReport& report, const MatchResult& match,
                                                const EveryBeam& beams, const Pose& start,
                                                const Eigen::Matrix3d& prior, double sigma);
+  MapPointFilter placed_better_than(const Vec3& e, double prior_variance) const;
 
   SlamConfig config_;
   ImuBuffer imu_;
