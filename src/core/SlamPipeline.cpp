@@ -357,6 +357,9 @@ bool SlamPipeline::yaw_estimated(const MatchResult& match) const {
 // per second along a blind direction since the last pose.
 // Height counts only for a sensor with floor beams, and with the per-axis weights that give them
 // to z (icp.split_axes): a planar scanner's z is not the scan's to see, nor degenerate.
+// A blind direction a structure across it fixes (search_blind_direction) counts as fixed, at the
+// search's offset; `measured` is then the match with that offset along it (what the gate and
+// MatchNoise measure), else the match itself.
 Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult& match,
                                           const EveryBeam& beams, const Pose& start,
                                           const Eigen::Matrix3d& prior, const ScanGeometry& sensor,
