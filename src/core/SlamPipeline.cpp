@@ -102,7 +102,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     report.outcome = ScanOutcome::MapInitialised;
     height_from_floor(report, projected);
     report.pose = pose_;
-    add_to_map(report, projected);
+    add_to_map(report, projected, normals);
     anchor_heading(report);
     return finish(report);
   }
@@ -171,7 +171,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   height_from_floor(report, projected);
   report.map_covariance = map_total().topLeftCorner<3, 3>();
   report.pose = pose_;
-  if (moved_enough_for_map_update(pose_)) add_to_map(report, projected);
+  if (moved_enough_for_map_update(pose_)) add_to_map(report, projected, normals);
   anchor_heading(report);
   return finish(report);
 }
@@ -622,9 +622,10 @@ bool SlamPipeline::moved_enough_for_map_update(const Pose& pose) const {
 // Beyond the seed (degeneracy.search_window): the beams that face the direction the scan sees
 // least, when it sees it too little (degeneracy.threshold): a door jamb's ten beams, which thinning
 // to every k-th leaves two of, too few for a search along a corridor to tell it from noise.
-std::vector<std::size_t> SlamPipeline::facing_weakest(const ProjectedScan& projected) const {
+// `normals`: the scan's wall normals (wall_normals); a turn of the scan since turns them all alike,
+// and which beams face its weakest direction stays the same.
+std::vector<std::size_t> SlamPipeline::facing_weakest(const std::vector<Vec3>& normals) const {
   if (config_.degeneracy.search_window <= 0.0) return {};
-  const std::vector<Vec3> normals = wall_normals(projected);
   Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
   std::size_t count = 0;
   for (const Vec3& n : normals) {
@@ -646,14 +647,15 @@ std::vector<std::size_t> SlamPipeline::facing_weakest(const ProjectedScan& proje
 
 // Step 5: the aligned scan, thinned to every k-th point, into the map at the new position; with
 // the point-to-line metric, each point's wall normal from its neighbours along the full scan.
-void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected) {
+void SlamPipeline::add_to_map(ScanReport& report, const ProjectedScan& projected,
+                              const std::vector<Vec3>& wall_normals) {
   const int k = config_.map.subsample_every;
   Points aligned = keep_every_kth(projected.points, k);
   std::vector<Vec3> normals;
   if (config_.icp.metric == IcpMetric::PointToLine) {
     const std::vector<Vec3> every = estimate_normals(projected.points, projected.vertical);
     normals = keep_every_kth(every, k);
-    for (const std::size_t i : facing_weakest(projected)) {
+    for (const std::size_t i : facing_weakest(wall_normals)) {
       if (i % std::size_t(k) == 0) continue;
       aligned.push_back(projected.points[i]);
       normals.push_back(every[i]);

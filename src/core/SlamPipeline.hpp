@@ -167,7 +167,9 @@ class SlamPipeline {
   bool heading_seen(const Eigen::Quaterniond& orientation) const;
   bool stale(double stamp) const;
   bool moved_enough_for_map_update(const Pose& pose) const;
-  void add_to_map(ScanReport& report, const ProjectedScan& projected);
+  // wall_normals: the scan's (wall_normals), for the beams a blind keyframe keeps whole.
+  void add_to_map(ScanReport& report, const ProjectedScan& projected,
+                  const std::vector<Vec3>& wall_normals);
   SweepMotion sweep_motion(const Scan& scan, const Vec3& predicted) const;
   ProjectedScan project(const Scan& scan, const Eigen::Quaterniond& orientation,
                         ScanReport& report) const;
@@ -207,7 +209,7 @@ class SlamPipeline {
     const std::vector<Vec3>& normals;
   };
   std::vector<Vec3> wall_normals(const ProjectedScan& projected) const;
-  std::vector<std::size_t> facing_weakest(const ProjectedScan& projected) const;
+  std::vector<std::size_t> facing_weakest(const std::vector<Vec3>& normals) const;
   Vec3 keep_what_the_scan_saw(ScanReport& report, const MatchResult& match, const EveryBeam& beams,
                               const Pose& start, const Eigen::Matrix3d& prior,
                               const ScanGeometry& sensor, Vec3& measured);

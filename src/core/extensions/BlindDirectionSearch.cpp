@@ -146,7 +146,6 @@ std::optional<DirectionFix> search_blind_direction(const WorldMap& map, const Sc
   std::optional<DirectionFix> fix = refine(map, facing, direction, shifts[at], options, usable);
   // As many map points as scan points: two or three map points are a look-alike's chance.
   if (!fix || fix->map_points < options.min_points) return std::nullopt;
-  fix->contrast = contrast;
   fix->uniqueness = uniqueness;
   return fix;
 }

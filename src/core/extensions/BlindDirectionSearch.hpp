@@ -47,7 +47,6 @@ struct DirectionFix {
   double offset = 0.0;         // m along e from where the scan was given
   double information = 0.0;    // 1/m^2 in units of the residual variance: sum_i (n_i . e)^2
   std::size_t map_points = 0;  // distinct map points the pairs took
-  double contrast = 0.0;       // the dip's depth in median absolute deviations
   double uniqueness = 0.0;     // the deepest other minimum's depth over the best's
 };
 
