@@ -358,6 +358,20 @@ double CorrelativeMatcher::score(const std::vector<Eigen::Vector2d>& scan,
   return sum / static_cast<double>(scan.size());
 }
 
+bool CorrelativeMatcher::is_peak(const std::vector<Eigen::Vector2d>& scan,
+                                 const Eigen::Vector3d& pose) const {
+  const double at = score(scan, pose);
+  const Eigen::Vector3d steps(config_.resolution, config_.resolution, angular_step(scan));
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double sign : {-1.0, 1.0}) {
+      Eigen::Vector3d neighbour = pose;
+      neighbour[axis] += sign * steps[axis];
+      if (score(scan, neighbour) > at) return false;
+    }
+  }
+  return true;
+}
+
 CorrelativeMatch CorrelativeMatcher::match(const std::vector<Eigen::Vector2d>& scan,
                                            const SearchWindow& window, double min_score) const {
   CorrelativeMatch result;

@@ -98,6 +98,12 @@ class CorrelativeMatcher {
 
   // The score of one pose: the mean finest-grid value at the cells of the scan's points.
   double score(const std::vector<Eigen::Vector2d>& scan, const Eigen::Vector3d& pose) const;
+  // Whether `pose` is a peak of the score: no pose a step from it (a cell in x or in y, the
+  // angular step in yaw), inside the window searched or beyond it, scores higher. The best pose of
+  // a window is a peak within it, but one on the window's rim whose score still rises past it is
+  // the slope of a ridge (a corridor's walls overlapping more as one scan slides along the other)
+  // or of a peak the window does not hold: no loop.
+  bool is_peak(const std::vector<Eigen::Vector2d>& scan, const Eigen::Vector3d& pose) const;
   // The yaw step match() uses for this scan: the configured one, or Hess 2016 eq. 7.
   double angular_step(const std::vector<Eigen::Vector2d>& scan) const;
   const CorrelativeMatcherConfig& config() const { return config_; }

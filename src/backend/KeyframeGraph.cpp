@@ -331,7 +331,9 @@ void KeyframeGraph::search(std::size_t newest, const Candidate& candidate) {
     ++counts_.rejected_score;
     return;
   }
-  if (match.score - match.second_score < config_.min_score_margin) {
+  // A look-alike scoring nearly as well, or a best pose on the slope of a ridge: ambiguous.
+  if (match.score - match.second_score < config_.min_score_margin ||
+      !matcher.is_peak(scan, match.pose)) {
     ++counts_.rejected_ambiguous;
     return;
   }

@@ -27,7 +27,7 @@ struct LoopCounts {
   std::size_t searches = 0;            // candidates searched
   std::size_t accepted = 0;            // loops in the graph, not switched off
   std::size_t rejected_score = 0;      // nothing in the window scored min_score
-  std::size_t rejected_ambiguous = 0;  // a look-alike scored nearly as well
+  std::size_t rejected_ambiguous = 0;  // a look-alike scored nearly as well, or a slope
   std::size_t rejected_by_graph = 0;   // switched off by the optimisation: the rest disagreed
   std::size_t optimisations = 0;
 };

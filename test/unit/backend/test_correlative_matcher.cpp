@@ -214,8 +214,10 @@ TEST(CorrelativeMatcher, ReturnsOnlyPosesInsideTheWindow) {
   window.centre = Eigen::Vector3d(4, 3, 0);
   window.linear = 1.0;
   window.angular = 0.5;
-  ASSERT_TRUE(matcher.match(scan, window, 0.0).found);
-  EXPECT_NEAR(matcher.match(scan, window, 0.0).pose.x(), truth.x(), 0.08);  // truth inside
+  const CorrelativeMatch inside = matcher.match(scan, window, 0.0);
+  ASSERT_TRUE(inside.found);
+  EXPECT_NEAR(inside.pose.x(), truth.x(), 0.08);  // truth inside
+  EXPECT_TRUE(matcher.is_peak(scan, inside.pose));
 
   window.linear = 0.3;    // the truth is 0.62 m away in x and 0.37 m in y
   window.angular = 0.15;  // and 0.21 rad in yaw
@@ -225,6 +227,28 @@ TEST(CorrelativeMatcher, ReturnsOnlyPosesInsideTheWindow) {
   EXPECT_LE(std::abs(m.pose.y() - 3), 0.3 + 1e-9);
   EXPECT_LE(std::abs(m.pose.z()), 0.15 + 1e-9);
   EXPECT_LT(m.score, matcher.score(scan, truth));
+  EXPECT_FALSE(matcher.is_peak(scan, m.pose));  // on the rim, the score rising to the truth
+}
+
+// Two views of a plain corridor, the older one of x = 0..10, the newer of x = -5..5 in the same
+// frame (a vehicle that took off facing along it and landed facing back): sliding the newer one
+// along the axis overlaps more wall the further it goes, so the window's best lies on its rim,
+// 1 m from the truth, and scores well; it is a slope, not a peak.
+TEST(CorrelativeMatcher, TheRimOfACorridorsSlopeIsNoPeak) {
+  Points2 older;
+  add_wall(older, {0.013, -1.007}, {10.013, -1.007});
+  add_wall(older, {0.013, 0.993}, {10.013, 0.993});
+  Points2 newer;
+  add_wall(newer, {-5.013, -1.007}, {5.013, -1.007});
+  add_wall(newer, {-5.013, 0.993}, {5.013, 0.993});
+  const CorrelativeMatcher matcher(older, {});
+  SearchWindow window;
+  window.linear = 1.0;
+  window.angular = 0.05;
+  const CorrelativeMatch m = matcher.match(every_other(newer), window, 0.3);
+  ASSERT_TRUE(m.found);
+  EXPECT_NEAR(m.pose.x(), 1.0, 0.051);
+  EXPECT_FALSE(matcher.is_peak(every_other(newer), m.pose));
 }
 
 TEST(CorrelativeMatcher, ScoresZeroOffTheGridAndRejectsABadConfiguration) {
