@@ -6,19 +6,64 @@
 namespace uavslam {
 namespace {
 
-// A facing point's residual along its pair's wall normal, or none: no map point within
-// max_distance, or one with no normal or a normal that does not agree with the scan's own (a jamb
-// pairs with a jamb, not with the wall beside it).
-std::optional<double> residual(const WorldMap& map, const Vec3& point, const Vec3& scan_normal,
-                               const Neighbour& nearest, const BlindSearchOptions& options,
-                               const MapPointFilter& usable) {
-  if (usable && !usable(nearest.index)) return std::nullopt;
-  const Vec3 r = point - map.point(nearest.index);
-  if (r.squaredNorm() > options.max_distance * options.max_distance) return std::nullopt;
-  if (map.normals().empty()) return std::nullopt;
-  const Vec3& n = map.normals()[nearest.index];
-  if (n.head<2>().dot(scan_normal.head<2>()) < options.normals_agree) return std::nullopt;
-  return n.head<2>().dot(r.head<2>());
+// A beam facing e and the map points it may pair with over the whole window: those the caller
+// allows, within `reach` (the farthest shift and max_distance) of it across the floor, their normal
+// within 30 degrees of its own (a jamb pairs with a jamb, not with the wall beside it or its own
+// back).
+struct FacingBeam {
+  Vec3 point;
+  Vec3 normal;
+  std::vector<std::size_t> candidates;
+};
+
+// Only the beams on surfaces that face along e can say where along e the scan lies; a wall along
+// e adds nothing but the jitter of the map points it pairs with as it slides. Their candidates in
+// one pass over the map.
+std::vector<FacingBeam> facing_beams(const WorldMap& map, const ScanPoints& scan, const Vec3& e,
+                                     double reach, const BlindSearchOptions& options,
+                                     const MapPointFilter& usable) {
+  std::vector<FacingBeam> beams;
+  for (std::size_t i = 0; i < scan.points.size() && i < scan.normals.size(); ++i) {
+    if (std::abs(scan.normals[i].head<2>().dot(e.head<2>())) < options.facing) continue;
+    beams.push_back({scan.points[i], scan.normals[i], {}});
+  }
+  for (std::size_t m = 0; m < map.size(); ++m) {
+    const Vec3& n = map.normals()[m];
+    bool allowed = !usable;
+    for (FacingBeam& beam : beams) {
+      if (n.head<2>().dot(beam.normal.head<2>()) < options.normals_agree ||
+          (map.point(m) - beam.point).head<2>().squaredNorm() > reach * reach) {
+        continue;
+      }
+      if (!allowed && !usable(m)) break;
+      allowed = true;
+      beam.candidates.push_back(m);
+    }
+  }
+  return beams;
+}
+
+struct Pair {
+  std::size_t map_index = 0;
+  double residual = 0.0;  // m, along the map point's normal
+};
+
+// The beam moved by `by`, paired with its nearest candidate within max_distance across the floor:
+// a jamb's face stands over the storey, so its copy from a keyframe flown lower (the take-off's)
+// still fixes a scan a metre higher, where a search in 3D finds it out of reach.
+std::optional<Pair> pair_of(const WorldMap& map, const FacingBeam& beam, const Vec3& by,
+                            double max_distance) {
+  const Vec3 point = beam.point + by;
+  std::optional<Pair> pair;
+  double nearest = max_distance * max_distance;
+  for (const std::size_t m : beam.candidates) {
+    const Vec3 r = point - map.point(m);
+    const double d2 = r.head<2>().squaredNorm();
+    if (d2 > nearest) continue;
+    nearest = d2;
+    pair = Pair{m, map.normals()[m].head<2>().dot(r.head<2>())};
+  }
+  return pair;
 }
 
 double median(std::vector<double> values) {
@@ -27,41 +72,24 @@ double median(std::vector<double> values) {
   return *middle;
 }
 
-// The points moved by `by`, and each one's nearest map point; a nearby shift's neighbours (the
-// last step's) start the search.
-Points shifted_and_paired(const WorldMap& map, const Points& points, const Vec3& by,
-                          std::vector<Neighbour>& nearest) {
-  Points moved = points;
-  for (Vec3& p : moved) p += by;
-  if (nearest.empty()) {
-    map.find_nearest(moved, nearest);
-  } else {
-    map.find_nearest_again(moved, nearest);
-  }
-  return moved;
-}
-
 // Gauss-Newton on C along e from `offset`, the capped pairs left out: each step
 // delta = -sum_i J_i r_i / sum_i J_i^2, J_i = n_i . e (the residual's change per metre along e).
-std::optional<DirectionFix> refine(const WorldMap& map, const ScanPoints& scan, const Vec3& e,
-                                   double offset, const BlindSearchOptions& options,
-                                   const MapPointFilter& usable) {
-  std::vector<Neighbour> nearest;
+std::optional<DirectionFix> refine(const WorldMap& map, const std::vector<FacingBeam>& beams,
+                                   const Vec3& e, double offset,
+                                   const BlindSearchOptions& options) {
   double information = 0.0;
   std::vector<std::size_t> map_points;
   for (int iteration = 0; iteration < options.refine_iterations; ++iteration) {
-    const Points moved = shifted_and_paired(map, scan.points, offset * e, nearest);
     double gradient = 0.0;
     information = 0.0;
     map_points.clear();
-    for (std::size_t i = 0; i < moved.size(); ++i) {
-      const std::optional<double> r =
-          residual(map, moved[i], scan.normals[i], nearest[i], options, usable);
-      if (!r || std::abs(*r) >= options.cap) continue;
-      const double J = map.normals()[nearest[i].index].head<2>().dot(e.head<2>());
-      gradient += J * *r;
+    for (const FacingBeam& beam : beams) {
+      const std::optional<Pair> pair = pair_of(map, beam, offset * e, options.max_distance);
+      if (!pair || std::abs(pair->residual) >= options.cap) continue;
+      const double J = map.normals()[pair->map_index].head<2>().dot(e.head<2>());
+      gradient += J * pair->residual;
       information += J * J;
-      map_points.push_back(nearest[i].index);
+      map_points.push_back(pair->map_index);
     }
     if (information <= 0.0) return std::nullopt;
     offset -= std::clamp(gradient / information, -options.step, options.step);
@@ -75,48 +103,39 @@ std::optional<DirectionFix> refine(const WorldMap& map, const ScanPoints& scan, 
   return fix;
 }
 
-}  // namespace
-
-std::vector<double> cost_along(const WorldMap& map, const ScanPoints& scan, const Vec3& direction,
-                               const std::vector<double>& shifts, const BlindSearchOptions& options,
-                               const MapPointFilter& usable) {
+// C(s) at each shift (m along e).
+std::vector<double> cost_along(const WorldMap& map, const std::vector<FacingBeam>& beams,
+                               const Vec3& e, const std::vector<double>& shifts,
+                               const BlindSearchOptions& options) {
   const double capped = options.cap * options.cap;
   std::vector<double> costs;
   costs.reserve(shifts.size());
-  std::vector<Neighbour> nearest;
   for (const double s : shifts) {
-    const Points moved = shifted_and_paired(map, scan.points, s * direction, nearest);
     double cost = 0.0;
-    for (std::size_t i = 0; i < moved.size(); ++i) {
-      const std::optional<double> r =
-          residual(map, moved[i], scan.normals[i], nearest[i], options, usable);
-      cost += r ? std::min(*r * *r, capped) : capped;
+    for (const FacingBeam& beam : beams) {
+      const std::optional<Pair> pair = pair_of(map, beam, s * e, options.max_distance);
+      cost += pair ? std::min(pair->residual * pair->residual, capped) : capped;
     }
     costs.push_back(cost);
   }
   return costs;
 }
 
+}  // namespace
+
 std::optional<DirectionFix> search_blind_direction(const WorldMap& map, const ScanPoints& scan,
                                                    const Vec3& direction,
                                                    const BlindSearchOptions& options,
                                                    const MapPointFilter& usable) {
   if (map.empty() || map.normals().empty() || options.step <= 0.0) return std::nullopt;
-  // Only the points on surfaces that face along e can say where along e the scan lies; a wall
-  // along e adds nothing but the jitter of the map points it pairs with as it slides.
-  ScanPoints facing;
-  for (std::size_t i = 0; i < scan.points.size() && i < scan.normals.size(); ++i) {
-    if (std::abs(scan.normals[i].head<2>().dot(direction.head<2>())) < options.facing) continue;
-    facing.points.push_back(scan.points[i]);
-    facing.weights.push_back(scan.weights[i]);
-    facing.normals.push_back(scan.normals[i]);
-  }
-  if (facing.points.size() < options.min_points) return std::nullopt;
-  const int reach = static_cast<int>(std::ceil(options.half_width / options.step));
-  if (reach < 2) return std::nullopt;
+  const int steps = static_cast<int>(std::ceil(options.half_width / options.step));
+  if (steps < 2) return std::nullopt;
   std::vector<double> shifts;
-  for (int k = -reach; k <= reach; ++k) shifts.push_back(k * options.step);
-  const std::vector<double> costs = cost_along(map, facing, direction, shifts, options, usable);
+  for (int k = -steps; k <= steps; ++k) shifts.push_back(k * options.step);
+  const std::vector<FacingBeam> facing =
+      facing_beams(map, scan, direction, shifts.back() + options.max_distance, options, usable);
+  if (facing.size() < options.min_points) return std::nullopt;
+  const std::vector<double> costs = cost_along(map, facing, direction, shifts, options);
 
   const auto best = std::min_element(costs.begin(), costs.end());
   const std::size_t at = static_cast<std::size_t>(best - costs.begin());
@@ -139,11 +158,11 @@ std::optional<DirectionFix> search_blind_direction(const WorldMap& map, const Sc
   // The dip must be several points fitting, not one.
   const double matched = depth / (options.cap * options.cap);
   if (contrast < options.contrast || uniqueness > options.uniqueness ||
-      matched < std::max(double(options.min_points), 0.5 * double(facing.points.size()))) {
+      matched < std::max(double(options.min_points), 0.5 * double(facing.size()))) {
     return std::nullopt;
   }
 
-  std::optional<DirectionFix> fix = refine(map, facing, direction, shifts[at], options, usable);
+  std::optional<DirectionFix> fix = refine(map, facing, direction, shifts[at], options);
   // As many map points as scan points: two or three map points are a look-alike's chance.
   if (!fix || fix->map_points < options.min_points) return std::nullopt;
   fix->uniqueness = uniqueness;

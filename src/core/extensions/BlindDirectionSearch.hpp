@@ -8,10 +8,13 @@
 // normal within 60 degrees of it: a wall along e only adds the jitter of the map points it slides
 // over) is summed, each residual capped at c^2:
 //   C(s) = sum_i min((n_i . (m_i + s e - d_i(s)))^2, c^2)
-// (a one-dimensional correlative search, Olson 2009, in the ICP's metric). A beam counts c^2 with
-// no pair: no map point within max_distance, one whose normal does not face the way the beam's
-// does (within 30 degrees: a jamb pairs with a jamb, not with the wall beside it or its own back),
-// or one the caller rules out (a keyframe no better placed along e than the vehicle). The fix is
+// (a one-dimensional correlative search, Olson 2009, in the ICP's metric). A beam's pair d_i(s) is
+// its nearest map point across the floor (horizontal distance: a jamb's face stands over the
+// storey, and the keyframe that holds it best may have been flown at another height) among those
+// whose normal faces the way the beam's does (within 30 degrees: a jamb pairs with a jamb, not
+// with the wall beside it or its own back) and that the caller allows (not a keyframe no better
+// placed along e than the vehicle: its copy of a jamb would only confirm the drift); it counts
+// c^2 with none within max_distance. The fix is
 // the deepest dip, taken only when it is unique (the deepest minimum elsewhere, beyond
 // `exclusion`, no deeper than `uniqueness` of it), deep (min_points and half the facing beams'
 // worth of c^2), sharp against the jitter of C away from it (`contrast` median absolute
@@ -50,15 +53,9 @@ struct DirectionFix {
   double uniqueness = 0.0;     // the deepest other minimum's depth over the best's
 };
 
-// C(s) at each shift of `shifts` (m along the unit horizontal `direction`), for the horizontal
-// scan points `scan` (world frame).
 // Which map points a pair may take (by map index): those placed better along the direction than
 // the prior places the vehicle; every one when empty.
 using MapPointFilter = std::function<bool(std::size_t)>;
-
-std::vector<double> cost_along(const WorldMap& map, const ScanPoints& scan, const Vec3& direction,
-                               const std::vector<double>& shifts, const BlindSearchOptions& options,
-                               const MapPointFilter& usable = {});
 
 // The fix along `direction` for the scan points `scan` placed at the prior's position along it
 // (world frame), or none when the search finds no single clear dip.

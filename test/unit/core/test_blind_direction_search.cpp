@@ -34,11 +34,11 @@ struct Surfaces {
     map.add_points(points, normals);
     return map;
   }
-  // The scan as the prior places it: the points moved by `error` along x.
-  ScanPoints scan(double error) const {
+  // The scan as the prior places it: the points moved by `error` along x (and `height` up).
+  ScanPoints scan(double error, double height = 0.0) const {
     ScanPoints scan;
     for (std::size_t i = 0; i < points.size(); ++i) {
-      scan.points.push_back(points[i] + error * Vec3::UnitX());
+      scan.points.push_back(points[i] + error * Vec3::UnitX() + height * Vec3::UnitZ());
       scan.weights.emplace_back(1.0, 1.0, 0.0);
       scan.normals.push_back(normals[i]);
     }
@@ -115,6 +115,27 @@ TEST(BlindDirectionSearch, AStructureOnlyUnplacedMapPointsHoldIsNotTaken) {
   EXPECT_FALSE(search_blind_direction(map, world.scan(0.3), Vec3::UnitX(), {}, walls_only));
   const MapPointFilter every = [](std::size_t) { return true; };
   EXPECT_TRUE(search_blind_direction(map, world.scan(0.3), Vec3::UnitX(), {}, every));
+}
+
+// A jamb's face stands over the storey: the keyframe that holds it (the take-off's, mapped 1 m
+// lower) fixes a scan flown higher, though a keyframe the caller rules out holds a copy of it
+// nearer in 3D (at the scan's height, 10 cm off: made while the direction drifted).
+TEST(BlindDirectionSearch, AJambMappedAtAnotherHeightFixesItThoughARuledOutCopyIsNearer) {
+  const Surfaces world = corridor_with_jamb();
+  Surfaces mapped = world;
+  const std::size_t placed = mapped.points.size();
+  Surfaces drifted;
+  drifted.add_jamb(8.1);
+  for (std::size_t i = 0; i < drifted.points.size(); ++i) {
+    mapped.points.push_back(drifted.points[i] + Vec3::UnitZ());
+    mapped.normals.push_back(drifted.normals[i]);
+  }
+  const MapPointFilter placed_only = [placed](std::size_t index) { return index < placed; };
+  const std::optional<DirectionFix> fix =
+      search_blind_direction(mapped.map(), world.scan(0.3, 1.0), Vec3::UnitX(), {}, placed_only);
+  ASSERT_TRUE(fix);
+  EXPECT_NEAR(fix->offset, -0.3, 1e-3);
+  EXPECT_EQ(fix->map_points, 21u);  // the placed jamb's
 }
 
 }  // namespace
