@@ -183,6 +183,7 @@ class SlamPipeline {
   Eigen::Vector2d heading_drift_terms() const;
   std::pair<Eigen::Vector4d, Eigen::Vector4d> keyframe_drift() const;
   Eigen::Matrix4d map_total() const;
+  Eigen::Matrix3d map_covariance(const Eigen::Matrix3d& covariance) const;
   void follow_heading_drift(double stamp);
   void anchor_heading(ScanReport& report);
   void height_from_floor(ScanReport& report, const ProjectedScan& projected);
