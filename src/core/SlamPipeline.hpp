@@ -69,7 +69,8 @@ struct ScanReport {
   bool blind_fixed = false;
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // m^2, of pose.position in the map
   // m^2: how well the map points the match paired with are placed (extensions/MapUncertainty);
-  // for a pose carried by the prior, the last match's.
+  // for a pose carried by the prior, the last match's; with `covariance` turned by the map's
+  // heading error (SlamPipeline::map_covariance).
   Eigen::Matrix3d map_covariance = Eigen::Matrix3d::Zero();
   // The match's distance from the motion prior's prediction, in standard deviations
   // (extensions/PriorAgreement); 0 without a prior that has a covariance.
