@@ -127,17 +127,12 @@ struct FloorStrikes {
   std::size_t scans = 0;
 };
 
-// Scans whose height the floor's level measured (floor.level_gate).
-std::size_t heights_from_floor(const SlamRun& run) {
+// Scans whose trace has `flag` set: ScanTrace::height_from_floor (the floor's level measured the
+// height, floor.level_gate), ScanTrace::blind_fixed (a structure across the blind direction fixed
+// it, degeneracy.search_window).
+std::size_t scans_with(const SlamRun& run, bool ScanTrace::*flag) {
   std::size_t count = 0;
-  for (const ScanTrace& t : run.trace) count += t.height_from_floor;
-  return count;
-}
-
-// Scans whose blind direction a structure across it fixed (degeneracy.search_window).
-std::size_t blind_fixed(const SlamRun& run) {
-  std::size_t count = 0;
-  for (const ScanTrace& t : run.trace) count += t.blind_fixed;
+  for (const ScanTrace& t : run.trace) count += t.*flag;
   return count;
 }
 
@@ -160,14 +155,14 @@ void print_summary(std::ostream& out, const RunSummary& s) {
     out << "  floor strikes     " << strikes.points << " points set aside in " << strikes.scans
         << " scans (level beams of the tilted scanner on the floor)\n";
   }
-  if (const std::size_t floor = heights_from_floor(run); floor > 0) {
+  if (const std::size_t floor = scans_with(run, &ScanTrace::height_from_floor); floor > 0) {
     out << "  floor level       the height measured from the take-off floor's level in " << floor
         << " of " << s.accepted() << " matched scans\n";
   }
   out << "  map               " << run.map.size() << " points from " << run.keyframes
       << " keyframes\n";
   print_tracking(out, run.tracking);
-  if (const std::size_t fixed = blind_fixed(run); fixed > 0) {
+  if (const std::size_t fixed = scans_with(run, &ScanTrace::blind_fixed); fixed > 0) {
     out << "  blind fixed       " << fixed
         << " scans' blind direction fixed by a structure across it (a jamb, an end wall)\n";
   }
@@ -241,8 +236,8 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
                 {"rejected", run.scans_in - s.accepted()},
                 {"rejected_by_reason", rejected},
                 {"floor_strikes", {{"points", strikes.points}, {"scans", strikes.scans}}},
-                {"height_from_floor", heights_from_floor(run)},
-                {"blind_fixed", blind_fixed(run)}};
+                {"height_from_floor", scans_with(run, &ScanTrace::height_from_floor)},
+                {"blind_fixed", scans_with(run, &ScanTrace::blind_fixed)}};
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
   j["tracking"] = to_json(run.tracking);
   if (!run.nees.empty()) {
