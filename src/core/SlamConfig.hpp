@@ -205,9 +205,15 @@ struct SlamConfig {
     // IMU: white noise of the specific force, m/s^2/sqrt(Hz) (the datasheet's noise density,
     // with the attitude's noise folded in: a tilt error of theta leaks g theta).
     double accel_noise_density = 0.003;
-    double accel_bias_walk = 1e-4;          // m/s^3/sqrt(Hz): how fast the bias may wander
-    double initial_speed_sigma = 0.1;       // m/s at the first scan (0.1: starting at rest)
-    double initial_bias_sigma = 0.05;       // m/s^2: the accelerometer's bias before any match
+    double accel_bias_walk = 1e-4;     // m/s^3/sqrt(Hz): how fast the bias may wander
+    double initial_speed_sigma = 0.1;  // m/s at the first scan (0.1: starting at rest)
+    double initial_bias_sigma = 0.05;  // m/s^2: the accelerometer's bias before any match
+    // The IMU prior's filter holds the horizontal part of a match's error that the matches around
+    // it share (m, 1 sigma: the few structures that fix a weak direction, each placed in the map
+    // from a handful of returns), changing over match_error_distance (m) flown: the map under the
+    // scan is another one. 0: the matches' errors are taken as independent.
+    double match_error_sigma = 0.0;
+    double match_error_distance = 0.5;
     double odometry_noise_per_metre = 0.1;  // m of odometry error per m travelled
     double odometry_noise_floor = 0.002;    // m per scan, however short the motion
     // The IMU prior fuses a velocity source's samples when they come (VelocitySample): where the

@@ -216,6 +216,14 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.motion.initial_bias_sigma = v.as_double(NumberRange::non_negative());
        }},
+      {"motion", "match_error_sigma",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.motion.match_error_sigma = v.as_double(NumberRange::non_negative());
+       }},
+      {"motion", "match_error_distance",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.motion.match_error_distance = v.as_double(NumberRange::positive());
+       }},
       {"motion", "odometry_noise_per_metre",
        [](SlamConfig& c, const YamlReader& v) {
          c.motion.odometry_noise_per_metre = v.as_double(NumberRange::non_negative());

@@ -36,6 +36,14 @@ Eigen::Matrix3d observed_body_axes(const Eigen::Matrix3d& seen, const Eigen::Mat
   return axes;
 }
 
+// The match's position as the state holds it: p + m (m horizontal).
+Eigen::Matrix<double, 3, 11> match_of_state() {
+  Eigen::Matrix<double, 3, 11> A = Eigen::Matrix<double, 3, 11>::Zero();
+  A.leftCols<3>().setIdentity();
+  A.block<2, 2>(0, 9).setIdentity();
+  return A;
+}
+
 }  // namespace
 
 InertialPrior::InertialPrior(const SlamConfig::Motion& noise, double max_gap)
@@ -82,6 +90,21 @@ void InertialPrior::integrate(State& s, const ImuSample& sample, double dt,
   s.P.block<3, 3>(6, 6).diagonal().array() += walk;
 }
 
+// The matches' shared error m over the distance d flown from `from` (first-order Gauss-Markov in
+// distance, not time: hovering, the scan sees the same map and m stays):
+//   m' = phi m,  P_mm' = phi^2 P_mm + (1 - phi^2) sigma_m^2 I,  phi = exp(-d / D)
+void InertialPrior::decorrelate(State& s, const Vec3& from) const {
+  const double sigma = noise_.match_error_sigma;
+  s.fresh_shared_variance = 0.0;
+  if (sigma <= 0.0) return;
+  const double phi = std::exp(-(s.x.segment<3>(0) - from).norm() / noise_.match_error_distance);
+  s.x.segment<2>(9) *= phi;
+  s.P.block<11, 2>(0, 9) *= phi;
+  s.P.block<2, 11>(9, 0) *= phi;
+  s.fresh_shared_variance = (1.0 - phi * phi) * sigma * sigma;
+  s.P.block<2, 2>(9, 9).diagonal().array() += s.fresh_shared_variance;
+}
+
 // The state at the last posed scan carried to t through the samples since, each held until the
 // next, and updated by the velocities stamped on the way; none across a gap of more than max_gap
 // without a sample.
@@ -106,6 +129,7 @@ std::optional<InertialPrior::State> InertialPrior::propagated(double t,
     }
     if (next != samples_.end() && next->stamp <= s.stamp) held = &*next++;
   }
+  decorrelate(s, state_->x.segment<3>(0));
   return s;
 }
 
@@ -119,8 +143,14 @@ MotionPrediction InertialPrior::motion_to(double t, double heading_correction) {
   // The pipeline turns the prediction by the heading correction: hand it back unturned.
   const Eigen::Matrix3d back = yaw_rotation(-heading_correction).toRotationMatrix();
   MotionPrediction prediction;
-  prediction.motion = back * (s->x.segment<3>(0) - state_->x.segment<3>(0));
-  prediction.covariance = back * s->P.block<3, 3>(0, 0) * back.transpose();
+  const Eigen::Matrix<double, 3, 11> A = match_of_state();
+  prediction.motion = back * A * (s->x - state_->x);
+  // The shared error's fresh change is left out: the matches' learnt noise holds it already
+  // (MatchNoise learns from the innovations, which see it), and counted twice it would teach
+  // MatchNoise that the matches err less than they do.
+  Eigen::Matrix3d covariance = A * s->P * A.transpose();
+  covariance.diagonal().head<2>().array() -= s->fresh_shared_variance;
+  prediction.covariance = back * covariance * back.transpose();
   return prediction;
 }
 
@@ -133,6 +163,7 @@ void InertialPrior::start(const ScanReport& report) {
                                                noise_.initial_speed_sigma);
   s.P.block<3, 3>(6, 6).diagonal().setConstant(noise_.initial_bias_sigma *
                                                noise_.initial_bias_sigma);
+  s.P.block<2, 2>(9, 9).diagonal().setConstant(noise_.match_error_sigma * noise_.match_error_sigma);
   state_ = s;
 }
 
@@ -140,13 +171,12 @@ void InertialPrior::start(const ScanReport& report) {
 void InertialPrior::update(State& s, const ScanReport& report) const {
   const Eigen::MatrixXd E = observed_basis(report.seen.observed);
   if (E.cols() == 0) return;
-  const auto m = E.cols();
   Eigen::Matrix3d scan = report.seen.covariance;
   if (scan.isZero()) scan = kDefaultScanSigma * kDefaultScanSigma * Eigen::Matrix3d::Identity();
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, 9);
-  H.leftCols<3>() = E.transpose();
+  const Eigen::MatrixXd H = E.transpose() * match_of_state();
   const Eigen::MatrixXd Rz = E.transpose() * scan * E;
-  const Eigen::VectorXd innovation = E.transpose() * (report.pose.position - s.x.segment<3>(0));
+  const Eigen::VectorXd innovation =
+      E.transpose() * (report.pose.position - match_of_state() * s.x);
   const Eigen::MatrixXd S = H * s.P * H.transpose() + Rz;
   // The gain is kept out of the blind directions (a Schmidt, "consider", update): what the scan
   // measured along a direction tilted from a blind one by noise in the normals is no measurement
@@ -157,6 +187,7 @@ void InertialPrior::update(State& s, const ScanReport& report) const {
   keep.block<3, 3>(0, 0) = seen;
   keep.block<3, 3>(3, 3) = seen;
   keep.block<3, 3>(6, 6) = observed_body_axes(seen, body);
+  keep.block<2, 2>(9, 9) = seen.topLeftCorner<2, 2>();
   const Eigen::MatrixXd K = keep * s.P * H.transpose() * S.inverse();
   s.x += K * innovation;
   // Joseph form: right for any gain, and stays symmetric and positive however small Rz is. The
@@ -177,12 +208,12 @@ void InertialPrior::update(State& s, const ScanReport& report) const {
 void InertialPrior::update_velocity(State& s, const VelocitySample& sample,
                                     double heading_correction) const {
   const Eigen::Matrix3d R = yaw_rotation(heading_correction).toRotationMatrix();
-  Eigen::Matrix<double, 3, 9> H = Eigen::Matrix<double, 3, 9>::Zero();
+  Eigen::Matrix<double, 3, 11> H = Eigen::Matrix<double, 3, 11>::Zero();
   H.block<3, 3>(0, 3) = Eigen::Matrix3d::Identity();
   const Eigen::Matrix3d Rz = R * sample.covariance * R.transpose();
   const Vec3 innovation = R * sample.velocity - s.x.segment<3>(3);
   const Eigen::Matrix3d S = H * s.P * H.transpose() + Rz;
-  const Eigen::Matrix<double, 9, 3> K = s.P * H.transpose() * S.inverse();
+  const Eigen::Matrix<double, 11, 3> K = s.P * H.transpose() * S.inverse();
   s.x += K * innovation;
   const StateMatrix IKH = StateMatrix::Identity() - K * H;
   s.P = IKH * s.P * IKH.transpose() + K * Rz * K.transpose();
@@ -207,6 +238,10 @@ Vec3 InertialPrior::velocity() const {
   return state_ ? Vec3(state_->x.segment<3>(3)) : Vec3::Zero();
 }
 
+Eigen::Matrix3d InertialPrior::velocity_covariance() const {
+  return state_ ? Eigen::Matrix3d(state_->P.block<3, 3>(3, 3)) : Eigen::Matrix3d::Zero();
+}
+
 Vec3 InertialPrior::bias() const {
   return state_ ? Vec3(state_->x.segment<3>(6)) : Vec3::Zero();
 }
@@ -217,9 +252,11 @@ void InertialPrior::reanchor(const Eigen::Isometry3d& correction) {
   const Vec3 position = state_->x.segment<3>(0);
   state_->x.segment<3>(0) = correction * position;
   state_->x.segment<3>(3) = R * state_->x.segment<3>(3);
+  state_->x.segment<2>(9) = R.topLeftCorner<2, 2>() * state_->x.segment<2>(9);
   StateMatrix G = StateMatrix::Identity();
   G.block<3, 3>(0, 0) = R;
   G.block<3, 3>(3, 3) = R;
+  G.block<2, 2>(9, 9) = R.topLeftCorner<2, 2>();
   state_->P = G * state_->P * G.transpose();
 }
 

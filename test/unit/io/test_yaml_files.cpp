@@ -353,6 +353,8 @@ void expect_default_slam_config(const SlamConfig& config) {
   EXPECT_EQ(config.motion.accel_bias_walk, defaults.motion.accel_bias_walk);
   EXPECT_EQ(config.motion.initial_speed_sigma, defaults.motion.initial_speed_sigma);
   EXPECT_EQ(config.motion.initial_bias_sigma, defaults.motion.initial_bias_sigma);
+  EXPECT_EQ(config.motion.match_error_sigma, defaults.motion.match_error_sigma);
+  EXPECT_EQ(config.motion.match_error_distance, defaults.motion.match_error_distance);
   EXPECT_EQ(config.motion.odometry_noise_per_metre, defaults.motion.odometry_noise_per_metre);
   EXPECT_EQ(config.motion.odometry_noise_floor, defaults.motion.odometry_noise_floor);
   EXPECT_EQ(config.motion.fuse_velocity, defaults.motion.fuse_velocity);
@@ -383,7 +385,8 @@ TEST(SlamConfigFile, TheSeedsConfigHoldsTheDefaults) {
 
 // The UAV's configuration is the seed's plus the motion model, the degeneracy analysis, the
 // seed's own suggestion of a periodic heading check, the gate on the motion prior, the robust
-// refinement, the floor strikes set aside, the sweep's motion undone and the back end.
+// refinement, the floor strikes set aside, the sweep's motion undone, the matches' shared error
+// and the back end.
 TEST(SlamConfigFile,
      TheUavsConfigIsTheSeedWithTheMotionPriorsDegeneracyAnchoredHeadingGateAndLines) {
   SlamConfig config = load_slam_config(std::string(UAVSLAM_SOURCE_DIR) + "/config/slam.yaml");
@@ -395,6 +398,7 @@ TEST(SlamConfigFile,
   EXPECT_GT(config.icp.heading_max_tilt, 0.0);
   EXPECT_GT(config.icp.prior_gate, 0.0);
   EXPECT_TRUE(config.motion.fuse_velocity);
+  EXPECT_GT(config.motion.match_error_sigma, 0.0);
   EXPECT_TRUE(config.loop_closure.enabled);
   EXPECT_GT(config.icp.robust_scale, 0.0);
   EXPECT_GT(config.scan.floor_margin, 0.0);
@@ -405,6 +409,7 @@ TEST(SlamConfigFile,
   config.loop_closure.enabled = SlamConfig{}.loop_closure.enabled;
   config.icp.motion_prior = SlamConfig{}.icp.motion_prior;
   config.motion.fuse_velocity = SlamConfig{}.motion.fuse_velocity;
+  config.motion.match_error_sigma = SlamConfig{}.motion.match_error_sigma;
   config.degeneracy.threshold = SlamConfig{}.degeneracy.threshold;
   config.icp.heading = SlamConfig{}.icp.heading;
   config.icp.heading_anchor = SlamConfig{}.icp.heading_anchor;
@@ -450,6 +455,8 @@ motion:
   accel_bias_walk: 0.001
   initial_speed_sigma: 0.5
   initial_bias_sigma: 0.2
+  match_error_sigma: 0.004
+  match_error_distance: 0.7
   odometry_noise_per_metre: 0.05
   odometry_noise_floor: 0.003
   fuse_velocity: true
@@ -479,6 +486,8 @@ loop_closure:
   EXPECT_EQ(c.motion.accel_bias_walk, 0.001);
   EXPECT_EQ(c.motion.initial_speed_sigma, 0.5);
   EXPECT_EQ(c.motion.initial_bias_sigma, 0.2);
+  EXPECT_EQ(c.motion.match_error_sigma, 0.004);
+  EXPECT_EQ(c.motion.match_error_distance, 0.7);
   EXPECT_EQ(c.motion.odometry_noise_per_metre, 0.05);
   EXPECT_EQ(c.motion.odometry_noise_floor, 0.003);
   EXPECT_TRUE(c.motion.fuse_velocity);
