@@ -173,10 +173,10 @@ void InertialPrior::update(State& s, const ScanReport& report) const {
   if (E.cols() == 0) return;
   Eigen::Matrix3d scan = report.seen.covariance;
   if (scan.isZero()) scan = kDefaultScanSigma * kDefaultScanSigma * Eigen::Matrix3d::Identity();
-  const Eigen::MatrixXd H = E.transpose() * match_of_state();
+  const Eigen::Matrix<double, 3, 11> A = match_of_state();
+  const Eigen::MatrixXd H = E.transpose() * A;
   const Eigen::MatrixXd Rz = E.transpose() * scan * E;
-  const Eigen::VectorXd innovation =
-      E.transpose() * (report.pose.position - match_of_state() * s.x);
+  const Eigen::VectorXd innovation = E.transpose() * (report.pose.position - A * s.x);
   const Eigen::MatrixXd S = H * s.P * H.transpose() + Rz;
   // The gain is kept out of the blind directions (a Schmidt, "consider", update): what the scan
   // measured along a direction tilted from a blind one by noise in the normals is no measurement
