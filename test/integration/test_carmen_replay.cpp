@@ -1,6 +1,6 @@
 // Replaying CARMEN logs over DDS: lidar_driver and imu_bridge with --source carmen:FILE on one
 // --start-at timeline, into the slam_matcher (--geometry-from-scan) and the recorder, as separate
-// OS processes on their own domains (191, 192; with the odometry prior over `odom`: 196, 111; with
+// OS processes on their own domains (191, 192; with the odometry prior over `odom`: 112, 111; with
 // the back end, a map server and a ground station: 109), the test as a ground-side subscriber of
 // `pose` and `matcher_status`.
 #include <algorithm>
@@ -45,7 +45,7 @@ using ::testing::HasSubstr;
 
 constexpr int kDomain = 191;               // the synthetic log's
 constexpr int kIntelDomain = 192;          // intel.clf's
-constexpr int kOdometryDomain = 196;       // the synthetic log's, with the odometry prior
+constexpr int kOdometryDomain = 112;       // the synthetic log's, with the odometry prior
 constexpr int kIntelOdometryDomain = 111;  // intel.clf's, with the odometry prior
 constexpr int kIntelLoopsDomain = 109;     // intel.clf's, with the back end and the map's processes
 constexpr double kPi = 3.14159265358979323846;
