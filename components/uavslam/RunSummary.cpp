@@ -116,6 +116,7 @@ nlohmann::json to_json(const backend::LoopCounts& loops, double seconds) {
           {"accepted", loops.accepted},
           {"rejected_score", loops.rejected_score},
           {"rejected_look_alike", loops.rejected_ambiguous},
+          {"rejected_back_to_back", loops.rejected_back_to_back},
           {"rejected_by_graph", loops.rejected_by_graph},
           {"optimisations", loops.optimisations}};
 }

@@ -44,8 +44,9 @@ std::size_t accepted_count(const OutcomeCounts& outcomes);
 // "  tracking          7100 tracking, 80 degraded (degenerate 80), 0 lost" and its JSON.
 void print_tracking(std::ostream& out, const TrackingCounts& tracking);
 nlohmann::json to_json(const TrackingCounts& tracking);
-// "  loops             12 accepted of 240 searched (rejected: 200 score, 20 look-alike, 8 by
-// the graph), 14 optimisations, 1.20 s" and its JSON: the back end's loop search and its time.
+// "  loops             12 accepted of 240 searched (rejected: 200 score, 20 look-alike, 1 back
+// to back, 8 by the graph), 14 optimisations, 1.20 s" and its JSON: the back end's loop search and
+// its time.
 void print_loops(std::ostream& out, const backend::LoopCounts& loops, double seconds);
 nlohmann::json to_json(const backend::LoopCounts& loops, double seconds);
 void print_summary(std::ostream& out, const RunSummary& summary);

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 
 #include <unistd.h>
 
@@ -16,7 +17,9 @@
 #include "io/FileError.hpp"
 #include "io/PlyFile.hpp"
 #include "io/ScenarioFile.hpp"
+#include "io/SimulatedCarmenLog.hpp"
 #include "io/TumFile.hpp"
+#include "io/YamlReader.hpp"
 
 namespace uavslam::cli {
 namespace {
@@ -27,6 +30,7 @@ struct SimulateOptions {
   std::string config;
   std::vector<std::string> overrides;
   std::string log;                    // MCAP recording of the flight, when given
+  std::string carmen;                 // the flight as a ground robot's CARMEN log, when given
   std::optional<std::uint64_t> seed;  // the sensors' noise seed instead of the scenario's
   bool quiet = false;
 };
@@ -65,6 +69,28 @@ void write_outputs(const std::filesystem::path& out, const SlamRun& run,
   if (!json) throw io::file_error(json_path, "cannot write");
 }
 
+// FILE.clf and, beside it, FILE.relations.
+std::string relations_path(const std::string& carmen) {
+  return std::filesystem::path(carmen).replace_extension(".relations").string();
+}
+
+void write_carmen(const std::string& path, const sim::Scenario& scenario, const SensorLog& log,
+                  bool quiet) {
+  const std::string relations = relations_path(path);
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (!folder.empty()) std::filesystem::create_directories(folder);
+  try {
+    const io::SimulatedCarmenFiles files =
+        io::write_simulated_carmen_log(path, relations, scenario, log.scans, log.ground_truth);
+    if (quiet) return;
+    std::cerr << "wrote " << path << " (" << files.scans << " scans, " << std::fixed
+              << std::setprecision(1) << files.path_length << " m driven) and " << relations << " ("
+              << files.relations << " relations)\n";
+  } catch (const std::invalid_argument& e) {
+    throw io::ConfigError("--carmen: the scenario " + scenario.name + ": " + e.what());
+  }
+}
+
 int run_simulate(const SimulateOptions& o) {
   sim::Scenario scenario = io::load_scenario(o.scenario);
   if (o.seed) scenario.seed = *o.seed;
@@ -72,6 +98,7 @@ int run_simulate(const SimulateOptions& o) {
   if (!o.quiet) std::cerr << "simulating " << scenario.name << " ...\n";
   const SensorLog log = simulate_sensors(scenario);
   if (!o.log.empty()) write_flight_log(o.log, scenario, log);
+  if (!o.carmen.empty()) write_carmen(o.carmen, scenario, log, o.quiet);
   std::optional<ProgressBar> bar;  // on a terminal only: a log file gets the summary alone
   if (!o.quiet && isatty(2)) bar.emplace("SLAM", log.scans.size(), "scans", std::cerr, true);
   const SlamRun run = run_slam(log, config, [&](std::size_t done, std::size_t total) {
@@ -87,7 +114,8 @@ int run_simulate(const SimulateOptions& o) {
   print_summary(std::cout, summary);
   std::cout << "  outputs           " << o.out
             << "/{estimate.tum, groundtruth.tum, map.ply, scans.csv, summary.json}"
-            << (o.log.empty() ? "" : ", " + o.log) << "\n";
+            << (o.log.empty() ? "" : ", " + o.log)
+            << (o.carmen.empty() ? "" : ", " + o.carmen + ", " + relations_path(o.carmen)) << "\n";
   return run.stopped_early ? 130 : 0;
 }
 
@@ -112,6 +140,11 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
                   "also write the flight's sensor data as an MCAP recording: channels scan, imu "
                   "and ground_truth, as the sensor processes publish them (replay it with "
                   "lidar_driver/imu_bridge --source mcap:FILE, map it with uavslam offline --log)");
+  cmd->add_option("--carmen", options->carmen,
+                  "also write the flight as a ground robot's CARMEN log FILE.clf (the planar "
+                  "scanner as ROBOTLASER1 messages, the scenario's `odometry` as the wheels' "
+                  "poses) and the relations of its true path as FILE.relations: score `uavslam "
+                  "run --carmen FILE.clf` with `uavslam eval --relations FILE.relations`");
   cmd->add_option("--seed", options->seed,
                   "seed of the sensors' noise instead of the scenario's: the same flight with "
                   "other noise, for Monte Carlo runs (test/bench/monte_carlo.sh)");

@@ -44,13 +44,16 @@ Eigen::Matrix4d diagonal_information(double sigma_xy, double sigma_z, double sig
 
 // One point per cell of `cell` (the first): the correlative matcher's cost grows with the points,
 // and points closer than its grid add nothing.
-std::vector<Eigen::Vector2d> thinned(const std::vector<Eigen::Vector2d>& points, double cell) {
+SurfacePoints thinned(const SurfacePoints& surface, double cell) {
   std::set<std::pair<long, long>> taken;
-  std::vector<Eigen::Vector2d> kept;
-  for (const Eigen::Vector2d& p : points) {
+  SurfacePoints kept;
+  for (std::size_t i = 0; i < surface.points.size(); ++i) {
+    const Eigen::Vector2d& p = surface.points[i];
     const std::pair<long, long> key{std::lround(std::floor(p.x() / cell)),
                                     std::lround(std::floor(p.y() / cell))};
-    if (taken.insert(key).second) kept.push_back(p);
+    if (!taken.insert(key).second) continue;
+    kept.points.push_back(p);
+    kept.normals.push_back(surface.normals[i]);
   }
   return kept;
 }
@@ -69,6 +72,7 @@ std::string describe(const LoopCounts& loops) {
   return std::to_string(loops.accepted) + " accepted of " + std::to_string(loops.searches) +
          " searched (rejected: " + std::to_string(loops.rejected_score) + " score, " +
          std::to_string(loops.rejected_ambiguous) + " look-alike, " +
+         std::to_string(loops.rejected_back_to_back) + " back to back, " +
          std::to_string(loops.rejected_by_graph) + " by the graph), " +
          std::to_string(loops.optimisations) + " optimisations";
 }
@@ -129,14 +133,17 @@ std::optional<MapCorrection> KeyframeGraph::add(const NodePose& pose, const Poin
   }
   in_front_end_.push_back(pose);
   unseen_.push_back(unseen);
-  for (const Vec3& p : points) {
-    node.points.push_back(to_node_frame(pose, p));
-    node.reach = std::max(node.reach, node.points.back().head<2>().norm());
-    if (std::abs(node.points.back().z()) <= kSliceHalfHeight) {
-      node.slice.push_back(node.points.back().head<2>());
-    }
-  }
   for (const Vec3& n : normals) node.normals.push_back(heading(pose.yaw).transpose() * n);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    node.points.push_back(to_node_frame(pose, points[i]));
+    const Vec3& p = node.points.back();
+    node.reach = std::max(node.reach, p.head<2>().norm());
+    if (std::abs(p.z()) > kSliceHalfHeight) continue;
+    node.slice.points.push_back(p.head<2>());
+    node.slice.normals.push_back(normals.size() == points.size()
+                                     ? toward_scanner(p.head<2>(), node.normals[i])
+                                     : Eigen::Vector2d::Zero());
+  }
   nodes_.push_back(std::move(node));
 
   const std::size_t newest = nodes_.size() - 1;
@@ -290,18 +297,20 @@ std::vector<KeyframeGraph::Candidate> KeyframeGraph::candidates(std::size_t newe
 }
 
 // The 2D slices of keyframes first..last in keyframe `centre`'s frame, at the graph's poses.
-std::vector<Eigen::Vector2d> KeyframeGraph::neighbourhood(std::size_t centre, std::size_t first,
-                                                          std::size_t last) const {
+SurfacePoints KeyframeGraph::neighbourhood(std::size_t centre, std::size_t first,
+                                           std::size_t last) const {
   const NodePose& origin = graph_.node(centre);
-  std::vector<Eigen::Vector2d> points;
+  SurfacePoints surface;
   for (std::size_t k = first; k <= last; ++k) {
     const Constraint seen = relative(origin, graph_.node(k));
     const Eigen::Matrix2d turn = heading(seen.yaw).topLeftCorner<2, 2>();
-    for (const Eigen::Vector2d& p : nodes_[k].slice) {
-      points.push_back(turn * p + seen.translation.head<2>());
+    const SurfacePoints& slice = nodes_[k].slice;
+    for (std::size_t i = 0; i < slice.points.size(); ++i) {
+      surface.points.push_back(turn * slice.points[i] + seen.translation.head<2>());
+      surface.normals.push_back(turn * slice.normals[i]);
     }
   }
-  return points;
+  return surface;
 }
 
 // The newest keyframe's neighbourhood (it and the submap_keyframes before it) searched over the
@@ -310,15 +319,15 @@ void KeyframeGraph::search(std::size_t newest, const Candidate& candidate) {
   ++counts_.searches;
   const auto spread = static_cast<std::size_t>(config_.submap_keyframes);
   const std::size_t j = candidate.keyframe;
-  const std::vector<Eigen::Vector2d> reference =
+  const SurfacePoints reference =
       neighbourhood(j, j >= spread ? j - spread : 0, std::min(newest - 1, j + spread));
-  const std::vector<Eigen::Vector2d> scan =
+  const SurfacePoints scan =
       thinned(neighbourhood(newest, newest >= spread ? newest - spread : 0, newest),
               2.0 * config_.resolution);
   CorrelativeMatcherConfig matcher_config;
   matcher_config.resolution = config_.resolution;
   matcher_config.ambiguity_radius = config_.ambiguity_radius;
-  const CorrelativeMatcher matcher(reference, matcher_config);
+  const CorrelativeMatcher matcher(reference.points, matcher_config);
 
   const Constraint estimated = relative(graph_.node(j), graph_.node(newest));
   SearchWindow window;
@@ -326,15 +335,23 @@ void KeyframeGraph::search(std::size_t newest, const Candidate& candidate) {
       Eigen::Vector3d(estimated.translation.x(), estimated.translation.y(), estimated.yaw);
   window.linear = candidate.radius;
   window.angular = candidate.angular;
-  const CorrelativeMatch match = matcher.match(scan, window, config_.min_score);
+  const CorrelativeMatch match = matcher.match(scan.points, window, config_.min_score);
   if (!match.found) {
     ++counts_.rejected_score;
     return;
   }
   // A look-alike scoring nearly as well, or a best pose on the slope of a ridge: ambiguous.
   if (match.score - match.second_score < config_.min_score_margin ||
-      !matcher.is_peak(scan, match.pose)) {
+      !matcher.is_peak(scan.points, match.pose)) {
     ++counts_.rejected_ambiguous;
+    return;
+  }
+  // Surfaces laid on each other from their two sides: a wall on the far face of a block, a niche's
+  // face on the niche's other face (SurfaceSides).
+  const SideCount sides = compare_sides(reference, scan, match.pose, 2.0 * config_.resolution);
+  if (sides.opposed_share() > config_.max_opposed_share ||
+      sides.weak_opposed_share() > config_.max_opposed_share) {
+    ++counts_.rejected_back_to_back;
     return;
   }
   Constraint loop;

@@ -7,8 +7,9 @@
 // allows: a keyframe at least min_travel back along the flight is a candidate when the estimate
 // puts it within 3 sigma of the graph's best path between them (plus min_radius), and the search
 // covers that window in x, y and yaw. A match is a loop only when it scores min_score, clearly
-// beats the best look-alike elsewhere in the window, and the rest of the graph agrees with it
-// (PoseGraph switches off the ones it does not).
+// beats the best look-alike elsewhere in the window, lays the surfaces on each other as they were
+// seen, from the same side (SurfaceSides), and the rest of the graph agrees with it (PoseGraph
+// switches off the ones it does not).
 #pragma once
 
 #include <cstddef>
@@ -18,22 +19,24 @@
 #include <vector>
 
 #include "backend/PoseGraph.hpp"
+#include "backend/SurfaceSides.hpp"
 #include "core/SlamConfig.hpp"
 #include "core/Types.hpp"
 
 namespace uavslam::backend {
 
 struct LoopCounts {
-  std::size_t searches = 0;            // candidates searched
-  std::size_t accepted = 0;            // loops in the graph, not switched off
-  std::size_t rejected_score = 0;      // nothing in the window scored min_score
-  std::size_t rejected_ambiguous = 0;  // a look-alike scored nearly as well, or a slope
-  std::size_t rejected_by_graph = 0;   // switched off by the optimisation: the rest disagreed
+  std::size_t searches = 0;               // candidates searched
+  std::size_t accepted = 0;               // loops in the graph, not switched off
+  std::size_t rejected_score = 0;         // nothing in the window scored min_score
+  std::size_t rejected_ambiguous = 0;     // a look-alike scored nearly as well, or a slope
+  std::size_t rejected_back_to_back = 0;  // the surfaces it laid on each other faced each other
+  std::size_t rejected_by_graph = 0;      // switched off by the optimisation: the rest disagreed
   std::size_t optimisations = 0;
 };
 
-// "12 accepted of 240 searched (rejected: 200 score, 20 look-alike, 8 by the graph),
-// 14 optimisations": how the tools and processes print the counts.
+// "12 accepted of 240 searched (rejected: 200 score, 20 look-alike, 1 back to back, 8 by the
+// graph), 14 optimisations": how the tools and processes print the counts.
 std::string describe(const LoopCounts& loops);
 
 // World frame before an optimisation -> after, about the newest keyframe: what the front end
@@ -82,11 +85,11 @@ class KeyframeGraph {
 
  private:
   struct Node {
-    Points points;                       // in the keyframe's heading frame (see to_node_frame)
-    std::vector<Vec3> normals;           // likewise
-    std::vector<Eigen::Vector2d> slice;  // the points near the keyframe's height, in 2D
-    double travelled = 0.0;              // m along the flight from the first keyframe
-    double reach = 0.0;                  // m, to its farthest point
+    Points points;              // in the keyframe's heading frame (see to_node_frame)
+    std::vector<Vec3> normals;  // likewise
+    SurfacePoints slice;        // the points near the keyframe's height, in 2D, with their normals
+    double travelled = 0.0;     // m along the flight from the first keyframe
+    double reach = 0.0;         // m, to its farthest point
   };
   // A keyframe's uncertainty relative to another through the graph (uncertainty_from).
   struct PathUncertainty {
@@ -105,8 +108,7 @@ class KeyframeGraph {
   std::vector<PathUncertainty> uncertainty_from(std::size_t newest) const;
   std::vector<Candidate> candidates(std::size_t newest) const;
   void search(std::size_t newest, const Candidate& candidate);
-  std::vector<Eigen::Vector2d> neighbourhood(std::size_t centre, std::size_t first,
-                                             std::size_t last) const;
+  SurfacePoints neighbourhood(std::size_t centre, std::size_t first, std::size_t last) const;
   void optimise_graph();
   void count_loops();
   double largest_shift() const;

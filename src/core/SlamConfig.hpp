@@ -267,6 +267,10 @@ struct SlamConfig {
     // (a corridor whose doors repeat has two).
     double min_score_margin = 0.05;
     double ambiguity_radius = 0.5;  // m
+    // ... and the surfaces it lays on each other seen from the same side: at most this share of
+    // the paired points with normals face each other, nor of those that fix the direction the
+    // others fix least (backend/SurfaceSides; 1 = not checked).
+    double max_opposed_share = 0.5;
   } loop_closure;
 };
 

@@ -74,6 +74,15 @@ std::vector<eval::PlanarStamped> read_planar_estimate(const std::string& path) {
   return poses;
 }
 
+void write_relations(const std::string& path, const std::vector<eval::Relation>& relations) {
+  OutputFile file(path, "w");
+  for (const eval::Relation& r : relations) {
+    std::fprintf(file.stream(), "%.6f %.6f %.6f %.6f 0.000000 0.000000 0.000000 %.6f\n", r.t1, r.t2,
+                 r.x, r.y, r.yaw);
+  }
+  file.close();
+}
+
 void write_planar_estimate(const std::string& path, const std::vector<eval::PlanarStamped>& poses) {
   OutputFile file(path, "w");
   for (const eval::PlanarStamped& p : poses) {

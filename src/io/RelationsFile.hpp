@@ -16,6 +16,10 @@ namespace uavslam::io {
 // "<path>: cannot open: <reason>" on an unreadable file.
 std::vector<eval::Relation> read_relations(const std::string& path);
 
+// Writes "t1 t2 x y z roll pitch yaw" per relation (z, roll and pitch 0), 6 decimals, in the given
+// order. Throws FileError naming the path and the system's reason when it cannot be written.
+void write_relations(const std::string& path, const std::vector<eval::Relation>& relations);
+
 // Reads every pose "timestamp x y theta" in file order (stamps need not be monotonic).
 // Throws FileError "<path>:<line>: <problem>" on a line that is not 4 finite numbers and
 // "<path>: cannot open: <reason>" on an unreadable file.

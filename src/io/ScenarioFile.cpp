@@ -69,8 +69,15 @@ sim::Waypoint read_waypoint(const YamlReader& reader, const sim::World& world) {
   return waypoint;
 }
 
+sim::Vehicle read_vehicle(const YamlReader& trajectory) {
+  const std::string vehicle = trajectory.get_string_or("vehicle", "multirotor");
+  if (vehicle == "multirotor") return sim::Vehicle::multirotor;
+  if (vehicle == "ground") return sim::Vehicle::ground;
+  trajectory.at("vehicle").fail_expected("multirotor or ground");
+}
+
 std::vector<sim::Waypoint> read_waypoints(const YamlReader& reader, const sim::World& world) {
-  reader.expect_keys_only({"waypoints"});
+  reader.expect_keys_only({"vehicle", "waypoints"});
   const YamlReader list = reader.at("waypoints");
   std::vector<sim::Waypoint> waypoints;
   for (const YamlReader& item : list.elements()) {
@@ -171,21 +178,41 @@ sim::VelocitySpec read_velocity(const YamlReader& reader) {
   return velocity;
 }
 
+sim::WheelOdometrySpec read_odometry(const YamlReader& reader) {
+  reader.expect_keys_only({"translation_scale_error", "turn_scale_error", "translation_noise",
+                           "turn_noise", "turn_per_metre_noise"});
+  sim::WheelOdometrySpec odometry;
+  const NumberRange scale = NumberRange::between(-0.5, 0.5);
+  odometry.translation_scale_error =
+      reader.get_double_or("translation_scale_error", odometry.translation_scale_error, scale);
+  odometry.turn_scale_error =
+      reader.get_double_or("turn_scale_error", odometry.turn_scale_error, scale);
+  odometry.translation_noise = reader.get_double_or("translation_noise", odometry.translation_noise,
+                                                    NumberRange::non_negative());
+  odometry.turn_noise =
+      reader.get_double_or("turn_noise", odometry.turn_noise, NumberRange::non_negative());
+  odometry.turn_per_metre_noise = reader.get_double_or(
+      "turn_per_metre_noise", odometry.turn_per_metre_noise, NumberRange::non_negative());
+  return odometry;
+}
+
 }  // namespace
 
 sim::Scenario load_scenario(const std::string& path) {
   const YamlReader root = YamlReader::from_file(path, "scenario");
   root.expect_keys_only(
-      {"name", "seed", "world", "trajectory", "lidar", "imu", "velocity", "faults"});
+      {"name", "seed", "world", "trajectory", "lidar", "imu", "velocity", "faults", "odometry"});
   sim::Scenario scenario;
   scenario.name = root.get_string_or("name", std::filesystem::path(path).stem().string());
   scenario.seed = root.get_uint64_or("seed", scenario.seed);
   scenario.world = read_world(root.at("world"));
   scenario.waypoints = read_waypoints(root.at("trajectory"), sim::World(scenario.world));
+  scenario.vehicle = read_vehicle(root.at("trajectory"));
   if (const auto lidar = root.find("lidar")) scenario.lidar = read_lidar(*lidar);
   if (const auto imu = root.find("imu")) scenario.imu = read_imu(*imu);
   if (const auto velocity = root.find("velocity")) scenario.velocity = read_velocity(*velocity);
   if (const auto faults = root.find("faults")) scenario.faults = read_faults(*faults);
+  if (const auto odometry = root.find("odometry")) scenario.odometry = read_odometry(*odometry);
   return scenario;
 }
 

@@ -312,6 +312,10 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.loop_closure.min_score_margin = v.as_double(NumberRange::non_negative());
        }},
+      {"loop_closure", "max_opposed_share",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.loop_closure.max_opposed_share = v.as_double(NumberRange::between(0.0, 1.0));
+       }},
       {"loop_closure", "ambiguity_radius",
        [](SlamConfig& c, const YamlReader& v) {
          c.loop_closure.ambiguity_radius = v.as_double(NumberRange::positive());

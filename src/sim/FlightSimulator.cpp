@@ -4,7 +4,7 @@ namespace uavslam::sim {
 
 FlightSimulator::FlightSimulator(const Scenario& scenario)
     : world_(std::make_unique<const World>(scenario.world)),
-      trajectory_(scenario.waypoints),
+      trajectory_(scenario.waypoints, scenario.vehicle),
       lidar_(scenario.lidar, *world_, scenario.seed),
       imu_(scenario.imu, scenario.seed),
       scan_clock_(trajectory_.start_time(), trajectory_.end_time(), scenario.lidar.rate_hz),

@@ -29,6 +29,9 @@ struct WorldSpec {
   std::vector<Cylinder> cylinders;
 };
 
+// What flies the trajectory: a multirotor tilts along its acceleration; a ground robot stays level.
+enum class Vehicle { multirotor, ground };
+
 struct Waypoint {
   double t = 0.0;  // s
   Vec3 position = Vec3::Zero();
@@ -69,14 +72,28 @@ struct FaultSpec {
   double late_scan_s = 0.0;
 };
 
+// A ground robot's wheel odometry, for a flight written as a CARMEN log (uavslam simulate
+// --carmen): the true motion between scans in the body frame, off by a scale and by noise that
+// grows as a random walk with the motion (so it does not depend on how often it is sampled),
+// integrated from the first pose.
+struct WheelOdometrySpec {
+  double translation_scale_error = 0.01;  // the wheels' radius off by this fraction
+  double turn_scale_error = 0.02;         // the wheel base off by this fraction
+  double translation_noise = 0.01;        // m per sqrt(m) travelled
+  double turn_noise = 0.01;               // rad per sqrt(rad) turned
+  double turn_per_metre_noise = 0.005;    // rad per sqrt(m) travelled (slip on a straight line)
+};
+
 struct Scenario {
   std::string name;
   WorldSpec world;
   std::vector<Waypoint> waypoints;
+  Vehicle vehicle = Vehicle::multirotor;
   LidarSpec lidar;
   ImuSpec imu;
   VelocitySpec velocity;
   FaultSpec faults;
+  WheelOdometrySpec odometry;
   std::uint64_t seed = 1;
 };
 

@@ -13,6 +13,7 @@ namespace uavslam::sim {
 constexpr std::uint64_t kLidarStream = 0x4c494441522d3031ULL;     // "LIDAR-01"
 constexpr std::uint64_t kImuStream = 0x494d552d2d2d3031ULL;       // "IMU---01"
 constexpr std::uint64_t kVelocityStream = 0x56454c2d2d2d3031ULL;  // "VEL---01"
+constexpr std::uint64_t kOdometryStream = 0x4f444f4d2d2d3031ULL;  // "ODOM--01"
 
 // splitmix64 of seed ^ stream: nearby seeds give unrelated generator states.
 constexpr std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t stream) {

@@ -72,8 +72,9 @@ Eigen::Quaterniond multirotor_orientation(const Vec3& acceleration, double yaw) 
 
 }  // namespace
 
-Trajectory::Trajectory(std::vector<Waypoint> waypoints)
+Trajectory::Trajectory(std::vector<Waypoint> waypoints, Vehicle vehicle)
     : waypoints_(validated(std::move(waypoints))),
+      vehicle_(vehicle),
       position_splines_(make_position_splines(waypoints_)),
       yaw_spline_(make_yaw_spline(waypoints_)) {}
 
@@ -107,6 +108,9 @@ double Trajectory::yaw_at(double t) const {
 }
 
 Eigen::Quaterniond Trajectory::orientation_at(double t) const {
+  if (vehicle_ == Vehicle::ground) {
+    return Eigen::Quaterniond(Eigen::AngleAxisd(yaw_at(t), Vec3::UnitZ()));
+  }
   return multirotor_orientation(acceleration_at(t), yaw_at(t));
 }
 

@@ -1,6 +1,6 @@
-// A smooth multirotor flight through timed waypoints: position and yaw are clamped cubic splines
-// (zero velocity at both ends); roll and pitch follow from the acceleration, as the thrust of a
-// multirotor must point along acceleration + gravity.
+// A smooth flight through timed waypoints: position and yaw are clamped cubic splines (zero
+// velocity at both ends); a multirotor's roll and pitch follow from the acceleration, as its thrust
+// must point along acceleration + gravity; a ground robot stays level.
 #pragma once
 
 #include <vector>
@@ -16,7 +16,7 @@ constexpr double kGravity = 9.80665;  // m/s^2
 class Trajectory {
  public:
   // Throws std::invalid_argument if fewer than 2 waypoints or times not strictly increasing.
-  explicit Trajectory(std::vector<Waypoint> waypoints);
+  explicit Trajectory(std::vector<Waypoint> waypoints, Vehicle vehicle = Vehicle::multirotor);
 
   double start_time() const { return waypoints_.front().t; }
   double end_time() const { return waypoints_.back().t; }
@@ -35,6 +35,7 @@ class Trajectory {
   double clamp_time(double t) const;
 
   std::vector<Waypoint> waypoints_;
+  Vehicle vehicle_;
   std::vector<CubicSpline> position_splines_;  // x, y, z
   CubicSpline yaw_spline_;
 };

@@ -92,6 +92,7 @@ world:
   cylinders:
     - {center: [8, 2], radius: 0.3, z: [0, 2.5]}
 trajectory:
+  vehicle: ground
   waypoints:
     - {t: 1, position: [1, 1, 1], yaw_deg: 10}
     - {t: 3, position: [2, 1, 1], yaw_deg: 20}
@@ -116,6 +117,12 @@ imu:
   accel_bias: [0.01, -0.02, 0.03]
 velocity: {rate_hz: 25, noise_std: 0.08}
 faults: {late_scan_every: 20, late_scan_s: 0.15}
+odometry:
+  translation_scale_error: -0.02
+  turn_scale_error: 0.03
+  translation_noise: 0.04
+  turn_noise: 0.05
+  turn_per_metre_noise: 0.06
 )"));
   const sim::Scenario s = load_scenario(path);
   EXPECT_EQ(s.name, "full");
@@ -150,8 +157,25 @@ faults: {late_scan_every: 20, late_scan_s: 0.15}
   EXPECT_EQ(s.velocity.noise_std, 0.08);
   EXPECT_EQ(s.faults.late_scan_every, 20);
   EXPECT_EQ(s.faults.late_scan_s, 0.15);
-  // Without the section the vehicle has no velocity source.
-  EXPECT_EQ(load_scenario(write("plain.yaml", kMinimalScenario)).velocity.rate_hz, 0.0);
+  EXPECT_EQ(s.vehicle, sim::Vehicle::ground);
+  EXPECT_EQ(s.odometry.translation_scale_error, -0.02);
+  EXPECT_EQ(s.odometry.turn_scale_error, 0.03);
+  EXPECT_EQ(s.odometry.translation_noise, 0.04);
+  EXPECT_EQ(s.odometry.turn_noise, 0.05);
+  EXPECT_EQ(s.odometry.turn_per_metre_noise, 0.06);
+  // Without the section the vehicle has no velocity source; without `vehicle`, it flies.
+  const sim::Scenario plain = load_scenario(write("plain.yaml", kMinimalScenario));
+  EXPECT_EQ(plain.velocity.rate_hz, 0.0);
+  EXPECT_EQ(plain.vehicle, sim::Vehicle::multirotor);
+}
+
+TEST_F(YamlFileTest, AVehicleIsAMultirotorOrAGroundRobot) {
+  const std::string path =
+      write("boat.yaml", minimal_scenario_with("  waypoints:", "  vehicle: boat\n  waypoints:"));
+  EXPECT_THAT(
+      config_error_of([&] { load_scenario(path); }),
+      ::testing::AllOf(::testing::HasSubstr("vehicle"),
+                       ::testing::HasSubstr("multirotor or ground"), ::testing::HasSubstr("boat")));
 }
 
 TEST_F(YamlFileTest, MissingRequiredKeyIsNamed) {
@@ -478,6 +502,7 @@ loop_closure:
   min_score: 0.6
   min_score_margin: 0.1
   ambiguity_radius: 0.7
+  max_opposed_share: 0.4
 )");
   const SlamConfig c = load_slam_config(path);
   EXPECT_EQ(c.degeneracy.threshold, 0.04);
@@ -508,6 +533,7 @@ loop_closure:
   EXPECT_EQ(c.loop_closure.min_score, 0.6);
   EXPECT_EQ(c.loop_closure.min_score_margin, 0.1);
   EXPECT_EQ(c.loop_closure.ambiguity_radius, 0.7);
+  EXPECT_EQ(c.loop_closure.max_opposed_share, 0.4);
   EXPECT_EQ(c.scan.subsample_every, 1);
   EXPECT_EQ(c.scan.floor_margin, 0.15);
   EXPECT_TRUE(c.scan.deskew);

@@ -68,6 +68,34 @@ INSTANTIATE_TEST_SUITE_P(AllShipped, ShippedScenario,
                          ::testing::ValuesIn(testing::shipped_scenario_names()),
                          [](const auto& info) { return info.param; });
 
+// config/scenarios/ground: ground robots for `simulate --carmen`, level, their scanner in its
+// plane, clear of everything along the way (through 1 m doors; the splines' turns on the spot
+// overshoot a little).
+class GroundScenario : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GroundScenario, IsALevelDriveClearOfTheWalls) {
+  const Scenario ground = testing::shipped_scenario("ground/" + GetParam());
+  EXPECT_EQ(ground.name, GetParam());
+  EXPECT_EQ(ground.vehicle, Vehicle::ground);
+  EXPECT_EQ(ground.lidar.rings, 1);
+  EXPECT_EQ(ground.lidar.floor_mirror.beams, 0);
+  const World world(ground.world);
+  const Trajectory trajectory(ground.waypoints, ground.vehicle);
+  double tightest = std::numeric_limits<double>::infinity();
+  for (double t = trajectory.start_time(); t <= trajectory.end_time(); t += kSampleStep) {
+    const Pose pose = trajectory.pose_at(t);
+    ASSERT_TRUE(world.is_free(pose.position)) << "t = " << t;
+    EXPECT_NEAR(pose.position.z(), 0.3, 1e-9) << "t = " << t;
+    tightest = std::min(tightest, clearance_above_floor(world, pose.position));
+  }
+  EXPECT_GE(tightest, 0.4);
+  RecordProperty("tightest_clearance_m", std::to_string(tightest));
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, GroundScenario,
+                         ::testing::Values("ring_corridor", "long_corridor", "offices"),
+                         [](const auto& info) { return info.param; });
+
 TEST(DemoScenario, IsAThreeMinuteFlightAtWalkingPace) {
   const Scenario demo = testing::shipped_scenario("demo");
   const Trajectory trajectory(demo.waypoints);
