@@ -52,13 +52,14 @@ class CellIndex {
 
  private:
   long cell_of(double v) const { return std::lround(std::floor(v / cell_)); }
-  static std::int64_t key(long x, long y) {
-    return (static_cast<std::int64_t>(x) << 32) ^ (static_cast<std::int64_t>(y) & 0xffffffffLL);
+  // Unsigned: a negative cell shifted left is undefined.
+  static std::uint64_t key(long x, long y) {
+    return (static_cast<std::uint64_t>(x) << 32) ^ (static_cast<std::uint64_t>(y) & 0xffffffffULL);
   }
 
   const SurfacePoints& reference_;
   double cell_;
-  std::unordered_map<std::int64_t, std::vector<std::size_t>> cells_;
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
 };
 
 }  // namespace
