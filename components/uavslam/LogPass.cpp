@@ -71,6 +71,7 @@ class Pass {
     }
     ++result_.scans_in;
     result_.dead_reckoned += scan.report.dead_reckoned;
+    result_.yaw_held += scan.report.yaw_held;
     result_.tracking.add(scan.tracking);
   }
 

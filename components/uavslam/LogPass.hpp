@@ -42,6 +42,7 @@ struct PassResult {
   std::size_t scans_in = 0;
   std::size_t keyframes = 0;
   std::size_t dead_reckoned = 0;
+  std::size_t yaw_held = 0;  // scans whose yaw the scan could not see: the odometry's kept
   TrackingCounts tracking;
   std::size_t malformed = 0;
   std::vector<std::string> problems;  // descriptions of the malformed records the input kept

@@ -52,7 +52,8 @@ nlohmann::json to_json(const PassResult& run, const std::string& log_path,
                 {"accepted", accepted},
                 {"rejected", run.scans_in - accepted},
                 {"rejected_by_reason", rejected_by_reason(run.outcomes)},
-                {"dead_reckoned", run.dead_reckoned}};
+                {"dead_reckoned", run.dead_reckoned},
+                {"yaw_held", run.yaw_held}};
   j["tracking"] = cli::to_json(run.tracking);
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
   if (run.loops) j["loops"] = cli::to_json(*run.loops, run.backend_seconds);
@@ -72,6 +73,10 @@ void print_summary(std::ostream& out, const PassResult& run, const std::string& 
   if (run.dead_reckoned > 0) {
     out << "  dead-reckoned     " << run.dead_reckoned
         << " rejected scans given the odometry's pose\n";
+  }
+  if (run.yaw_held > 0) {
+    out << "  yaw held          " << run.yaw_held
+        << " scans blind to their turn (a round room) kept the odometry's\n";
   }
   print_tracking(out, run.tracking);
   out << "  malformed lines   " << run.malformed << "\n";

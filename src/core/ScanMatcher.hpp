@@ -73,6 +73,9 @@ struct MatchResult {
   std::size_t correspondences = 0;  // pairs in the final error
   Points aligned;                   // the scan's points in the world frame at `position`
   Correspondences pairs;            // the pairs of the final error (what the scan saw)
+  // Beyond the seed: the yaw the scan could not see was held at the prediction's and the scan
+  // matched again without it (SlamPipeline::yaw_blind).
+  bool yaw_held = false;
 };
 
 class ScanMatcher {

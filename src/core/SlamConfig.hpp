@@ -198,6 +198,10 @@ struct SlamConfig {
     double search_step = 0.02;       // m between the shifts searched
     double search_sigma = 0.02;      // m: a fix's error is taken as at least this
     double search_uniqueness = 0.5;  // another minimum's depth over the fix's, at most
+    // A yaw the scan cannot see (its information fraction with the translation free under
+    // `threshold`: a round room) is held at the prediction's and the scan matched again
+    // (SlamPipeline::yaw_blind); only with the yaw estimated and the analysis on.
+    bool hold_blind_yaw = true;
   } degeneracy;
 
   // The motion prior's noise (icp.motion_prior imu or odometry): how fast its uncertainty grows.

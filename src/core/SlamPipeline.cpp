@@ -125,7 +125,10 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   report.error_before = match.error_before;
   report.error_after = match.error_after;
   report.iterations = match.iterations;
-  if (match.outcome != ScanOutcome::Accepted) return carried_by_prior(report, start, prior);
+  report.yaw_held = match.yaw_held;
+  if (match.outcome != ScanOutcome::Accepted) {
+    return carried_by_prior(report, start, prior, prediction.covariance.has_value());
+  }
 
   // Beyond the seed: what the scan saw, and whether the match agrees with the motion prior there.
   Vec3 measured = match.position;
@@ -146,7 +149,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     match_noise_.add(correction, report.seen.observed, report.seen.covariance, prior);
     if (verdict == PriorGate::Verdict::Rejected) {
       report.outcome = ScanOutcome::DisagreesWithPrior;
-      return carried_by_prior(report, start, prior);
+      return carried_by_prior(report, start, prior, true);
     }
     report.prior_overruled = verdict == PriorGate::Verdict::Overrules;
   }
@@ -223,11 +226,12 @@ void SlamPipeline::height_from_floor(ScanReport& report, const ProjectedScan& pr
   report.height_from_floor = true;
 }
 
-// A rejected scan: with a motion prior, the vehicle went where the prior says (the start), with
-// the prior's covariance; without one (the seed), the pose stays.
+// A rejected scan: with a motion prior, the vehicle went where the prior says (the start, also
+// when that is where it was: wheels that stood still), with the prior's covariance; without one
+// (the seed), the pose stays and the scan gets none.
 ScanReport SlamPipeline::carried_by_prior(ScanReport& report, const Pose& start,
-                                          const Eigen::Matrix3d& prior) {
-  if (start.position == pose_.position) return finish(report);
+                                          const Eigen::Matrix3d& prior, bool has_prior) {
+  if (!has_prior && start.position == pose_.position) return finish(report);
   covariance_ = prior;
   pose_ = start;
   report.pose = pose_;
@@ -259,7 +263,13 @@ MatchResult SlamPipeline::match(const ScanPoints& points, const Pose& predicted)
   const HeadingMode heading = config_.icp.heading;
   const Vec3& start = predicted.position;
   if (heading == HeadingMode::EveryScan) {
-    return matcher_.match(map_, points, start, heading_seen(predicted.orientation), &nearest_);
+    MatchResult turned =
+        matcher_.match(map_, points, start, heading_seen(predicted.orientation), &nearest_);
+    if (turned.outcome != ScanOutcome::Accepted || !yaw_blind(turned)) return turned;
+    MatchResult held = matcher_.match(map_, points, start, false, &nearest_);
+    if (held.outcome != ScanOutcome::Accepted) return turned;
+    held.yaw_held = true;
+    return held;
   }
   if (heading == HeadingMode::PeriodicCheck && heading_check_due(predicted)) {
     scans_since_heading_check_ = 0;
@@ -339,6 +349,17 @@ ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected,
                                    keep_every_kth(projected.vertical, k), config_.icp.split_axes);
   if (!normals.empty()) points.normals = keep_every_kth(normals, k);
   return points;
+}
+
+// Beyond the seed: a turn and a shift together leave the scan nearly unchanged (a round room seen
+// off its centre), so the yaw it found is where the ICP slid to (degeneracy.threshold, on the
+// yaw's information fraction, ScanInformation).
+bool SlamPipeline::yaw_blind(const MatchResult& match) const {
+  const SlamConfig::Degeneracy& options = config_.degeneracy;
+  if (!options.hold_blind_yaw || options.threshold <= 0.0 || match.yaw == 0.0) return false;
+  const ScanInformation information =
+      scan_information(match.pairs, match.position, true, options.min_sigma);
+  return information.horizontal_pairs > 0 && information.yaw_fraction < options.threshold;
 }
 
 // The match turned the scan as well as moving it: heading estimated in every scan, or a check

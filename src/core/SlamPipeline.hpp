@@ -59,6 +59,9 @@ struct ScanReport {
   bool height_from_floor = false;
   // After a gap in the scans the ICP searched a grid of starts (core/Relocalisation).
   bool relocalised = false;
+  // The scan could not see its yaw (a turn and a shift alike to it): matched again with the
+  // heading the prediction gave (SlamPipeline::yaw_blind).
+  bool yaw_held = false;
   std::size_t map_size = 0;
   Points added_points;  // what this scan added to the map (empty unless map_updated)
   // Beyond the seed (degeneracy.threshold > 0): what the scan saw of each direction, and the
@@ -165,6 +168,7 @@ class SlamPipeline {
   Eigen::Quaterniond corrected(const Eigen::Quaterniond& source_orientation) const;
   bool heading_check_due(const Pose& predicted) const;
   MatchResult match(const ScanPoints& points, const Pose& predicted);
+  bool yaw_blind(const MatchResult& match) const;
   bool heading_seen(const Eigen::Quaterniond& orientation) const;
   bool stale(double stamp) const;
   bool moved_enough_for_map_update(const Pose& pose) const;
@@ -199,7 +203,8 @@ class SlamPipeline {
   std::optional<DriftCheck> drift_check(const MatchResult& check, double stamp) const;
   Eigen::Matrix3d predicted_covariance(const MotionPrediction& prediction, double stamp) const;
   // `prior`: predicted_covariance at the scan, computed once per scan for these.
-  ScanReport carried_by_prior(ScanReport& report, const Pose& start, const Eigen::Matrix3d& prior);
+  ScanReport carried_by_prior(ScanReport& report, const Pose& start, const Eigen::Matrix3d& prior,
+                              bool has_prior);
   std::optional<PriorDistance> distance_from_prior(const ScanReport& report, const Vec3& measured,
                                                    const Pose& start,
                                                    const MotionPrediction& prediction,

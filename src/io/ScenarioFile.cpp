@@ -28,21 +28,41 @@ sim::Box read_box(const YamlReader& reader) {
   return box;
 }
 
+// A vertical extent `z: [z0, z1]`, z0 < z1.
+Eigen::Vector2d read_z_range(const YamlReader& reader) {
+  const YamlReader z_range = reader.at("z");
+  const Eigen::Vector2d z = z_range.as_vec2();
+  if (!(z.x() < z.y())) z_range.fail_expected("[z0, z1] with z0 < z1");
+  return z;
+}
+
 sim::Cylinder read_cylinder(const YamlReader& reader) {
   reader.expect_keys_only({"center", "radius", "z"});
   sim::Cylinder cylinder;
   cylinder.center = reader.at("center").as_vec2();
   cylinder.radius = reader.get_double("radius", NumberRange::positive());
-  const YamlReader z_range = reader.at("z");
-  const Eigen::Vector2d z = z_range.as_vec2();
-  if (!(z.x() < z.y())) z_range.fail_expected("[z0, z1] with z0 < z1");
+  const Eigen::Vector2d z = read_z_range(reader);
   cylinder.z0 = z.x();
   cylinder.z1 = z.y();
   return cylinder;
 }
 
+sim::ArcWall read_arc(const YamlReader& reader) {
+  reader.expect_keys_only({"center", "radius", "from_deg", "to_deg", "z"});
+  sim::ArcWall arc;
+  arc.center = reader.at("center").as_vec2();
+  arc.radius = reader.get_double("radius", NumberRange::positive());
+  arc.from_deg = reader.get_double_or("from_deg", arc.from_deg);
+  arc.to_deg = reader.get_double_or("to_deg", arc.to_deg,
+                                    NumberRange::between(arc.from_deg, arc.from_deg + 360.0));
+  const Eigen::Vector2d z = read_z_range(reader);
+  arc.z0 = z.x();
+  arc.z1 = z.y();
+  return arc;
+}
+
 sim::WorldSpec read_world(const YamlReader& reader) {
-  reader.expect_keys_only({"room", "boxes", "cylinders"});
+  reader.expect_keys_only({"room", "boxes", "cylinders", "arcs"});
   sim::WorldSpec world;
   world.room = read_box(reader.at("room"));
   if (const auto boxes = reader.find("boxes")) {
@@ -52,6 +72,9 @@ sim::WorldSpec read_world(const YamlReader& reader) {
     for (const YamlReader& cylinder : cylinders->elements()) {
       world.cylinders.push_back(read_cylinder(cylinder));
     }
+  }
+  if (const auto arcs = reader.find("arcs")) {
+    for (const YamlReader& arc : arcs->elements()) world.arcs.push_back(read_arc(arc));
   }
   return world;
 }

@@ -184,6 +184,8 @@ const std::vector<Parameter>& parameters() {
        [](SlamConfig& c, const YamlReader& v) {
          c.degeneracy.min_sigma = v.as_double(NumberRange::positive());
        }},
+      {"degeneracy", "hold_blind_yaw",
+       [](SlamConfig& c, const YamlReader& v) { c.degeneracy.hold_blind_yaw = v.as_bool(); }},
       {"degeneracy", "search_window",
        [](SlamConfig& c, const YamlReader& v) {
          c.degeneracy.search_window = v.as_double(NumberRange::non_negative());

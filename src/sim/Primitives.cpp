@@ -76,6 +76,36 @@ double ray_hit_cylinder(const Ray& ray, const Cylinder& cylinder, double t_max) 
   return best <= t_max ? best : kInf;
 }
 
+namespace {
+
+// The angle of (x, y) about the arc's centre lies on the arc.
+bool on_arc(const ArcWall& arc, double x, double y) {
+  const double span = arc.to_deg - arc.from_deg;
+  double from_start = std::atan2(y, x) * 180.0 / M_PI - arc.from_deg;
+  from_start -= 360.0 * std::floor(from_start / 360.0);
+  return from_start <= span;
+}
+
+}  // namespace
+
+double ray_hit_arc(const Ray& ray, const ArcWall& arc, double t_max) {
+  const double ox = ray.origin.x() - arc.center.x();
+  const double oy = ray.origin.y() - arc.center.y();
+  const double dx = ray.dir.x(), dy = ray.dir.y();
+  const double a = dx * dx + dy * dy;
+  if (a == 0.0) return kInf;  // straight up or down: along the wall, never through it
+  const double half_b = ox * dx + oy * dy;
+  const double c = ox * ox + oy * oy - arc.radius * arc.radius;
+  const double disc = half_b * half_b - a * c;
+  if (disc < 0.0) return kInf;
+  for (const double t : {(-half_b - std::sqrt(disc)) / a, (-half_b + std::sqrt(disc)) / a}) {
+    if (t < 0.0 || t > t_max) continue;
+    const double z = ray.origin.z() + t * ray.dir.z();
+    if (z >= arc.z0 && z <= arc.z1 && on_arc(arc, ox + t * dx, oy + t * dy)) return t;
+  }
+  return kInf;
+}
+
 bool box_contains(const Box& box, const Vec3& p) {
   return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all();
 }
@@ -99,6 +129,21 @@ double distance_to_cylinder_surface(const Cylinder& cylinder, const Vec3& p) {
   const double vertical = std::max(cylinder.z0 - p.z(), p.z() - cylinder.z1);
   if (radial <= 0.0 && vertical <= 0.0) return std::min(-radial, -vertical);  // inside
   return std::hypot(std::max(radial, 0.0), std::max(vertical, 0.0));
+}
+
+double distance_to_arc(const ArcWall& arc, const Vec3& p) {
+  const Eigen::Vector2d offset = p.head<2>() - arc.center;
+  const double vertical = std::max({arc.z0 - p.z(), p.z() - arc.z1, 0.0});
+  if (on_arc(arc, offset.x(), offset.y())) {
+    return std::hypot(std::abs(offset.norm() - arc.radius), vertical);
+  }
+  double nearest = kInf;  // off the arc's span: its nearer end
+  for (const double deg : {arc.from_deg, arc.to_deg}) {
+    const Eigen::Vector2d end =
+        arc.radius * Eigen::Vector2d(std::cos(deg * M_PI / 180.0), std::sin(deg * M_PI / 180.0));
+    nearest = std::min(nearest, std::hypot((offset - end).norm(), vertical));
+  }
+  return nearest;
 }
 
 }  // namespace uavslam::sim

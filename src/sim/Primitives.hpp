@@ -26,11 +26,15 @@ double ray_hit_box(const Ray& ray, const Box& box, double t_max);
 // before `t_max` (0 when the origin is inside the cylinder).
 double ray_hit_cylinder(const Ray& ray, const Cylinder& cylinder, double t_max);
 
+// Distance to the first hit on an arc wall (from either side), or +infinity if none before t_max.
+double ray_hit_arc(const Ray& ray, const ArcWall& arc, double t_max);
+
 bool box_contains(const Box& box, const Vec3& p);
 bool cylinder_contains(const Cylinder& cylinder, const Vec3& p);
 
 // Euclidean distance from p to the surface of a box / cylinder, whether p is inside or outside.
 double distance_to_box_surface(const Box& box, const Vec3& p);
 double distance_to_cylinder_surface(const Cylinder& cylinder, const Vec3& p);
+double distance_to_arc(const ArcWall& arc, const Vec3& p);
 
 }  // namespace uavslam::sim

@@ -23,10 +23,21 @@ struct Cylinder {  // vertical
   double z0 = 0.0, z1 = 0.0;
 };
 
+// A vertical wall bent round a circle (a round hall's wall, with a gap for its door): the circle
+// of `radius` about `center` from from_deg to to_deg (counter-clockwise from +x), z0 to z1 high.
+// A surface of no thickness, seen from either side.
+struct ArcWall {
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();
+  double radius = 0.0;
+  double from_deg = 0.0, to_deg = 360.0;
+  double z0 = 0.0, z1 = 0.0;
+};
+
 struct WorldSpec {
   Box room;  // the inside of floor, ceiling and four walls
   std::vector<Box> boxes;
   std::vector<Cylinder> cylinders;
+  std::vector<ArcWall> arcs;
 };
 
 // What flies the trajectory: a multirotor tilts along its acceleration; a ground robot stays level.

@@ -27,6 +27,10 @@ double World::cast_ray(const Vec3& origin, const Vec3& unit_dir, double max_rang
     const double t = ray_hit_cylinder(ray, cylinder, limit);
     if (t < hit) hit = limit = t;
   }
+  for (const ArcWall& arc : spec_.arcs) {
+    const double t = ray_hit_arc(ray, arc, limit);
+    if (t < hit) hit = limit = t;
+  }
   return hit;
 }
 
@@ -53,6 +57,7 @@ double World::distance_to_nearest_obstacle(const Vec3& p) const {
   for (const Cylinder& cylinder : spec_.cylinders) {
     nearest = std::min(nearest, distance_to_cylinder_surface(cylinder, p));
   }
+  for (const ArcWall& arc : spec_.arcs) nearest = std::min(nearest, distance_to_arc(arc, p));
   return nearest;
 }
 

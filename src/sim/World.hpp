@@ -1,4 +1,5 @@
-// The simulated environment: a room with solid boxes and vertical cylinders in it.
+// The simulated environment: a room with solid boxes, vertical cylinders and round walls (arcs,
+// of no thickness) in it.
 // Answers the two questions the simulator and the map grader ask: where does a ray hit, and how
 // far is a point from the nearest surface.
 #pragma once
@@ -24,7 +25,7 @@ class World {
   // Exact Euclidean distance to the nearest surface: room faces, box and cylinder surfaces.
   double distance_to_nearest_surface(const Vec3& p) const;
 
-  // As above but over the obstacles only (boxes and cylinders), ignoring the room's faces;
+  // As above but over the obstacles only (boxes, cylinders, arcs), ignoring the room's faces;
   // +infinity when there are none.
   double distance_to_nearest_obstacle(const Vec3& p) const;
 

@@ -37,6 +37,7 @@ ScanInformation scan_information(const Correspondences& pairs, const Vec3& body,
   info.sigma = std::sqrt(variance);
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();  // over (t_x, t_y, yaw)
   double vertical = 0.0;
+  double levers = 0.0;  // sum_i w_i |q_i|^2, the most the pairs could say of the yaw
   for (std::size_t i = 0; i < pairs.scan.size(); ++i) {
     const Vec3& w = pairs.weights[i];
     const Vec3& n = pairs.scan_normals[i];
@@ -47,6 +48,7 @@ ScanInformation scan_information(const Correspondences& pairs, const Vec3& body,
     if (w.x() <= 0.0 || n.isZero()) continue;
     const Eigen::Vector3d J = horizontal_jacobian(n, pairs.scan[i] - body);
     H.noalias() += w.x() * J * J.transpose();
+    levers += w.x() * (pairs.scan[i] - body).head<2>().squaredNorm();
     ++info.horizontal_pairs;
   }
   Eigen::Matrix2d translation = H.topLeftCorner<2, 2>();
@@ -59,6 +61,7 @@ ScanInformation scan_information(const Correspondences& pairs, const Vec3& body,
       const double yaw_information =
           H(2, 2) - (H.bottomLeftCorner<1, 2>() * Htt.inverse() * H.topRightCorner<2, 1>())(0, 0);
       if (yaw_information > 0.0) info.yaw_variance = variance / yaw_information;
+      if (levers > 0.0) info.yaw_fraction = std::max(yaw_information, 0.0) / levers;
     }
   }
   info.translation.topLeftCorner<2, 2>() = translation / variance;

@@ -28,6 +28,10 @@ struct ScanInformation {
   double sigma = 0.0;                                     // m
   // rad^2: the yaw's variance with the translation estimated beside it (with_yaw; else 0)
   double yaw_variance = 0.0;
+  // The yaw's information with the translation estimated beside it, as a fraction of what the
+  // pairs would give were each normal square to its lever (sum_i w_i |q_i|^2): near 0 where a
+  // turn and a shift together leave the scan unchanged (a round room); 1 without the yaw.
+  double yaw_fraction = 1.0;
 };
 
 // Uses pairs.scan_normals (the scan's own normals, ScanPoints::normals); none: no information.

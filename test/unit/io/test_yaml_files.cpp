@@ -91,6 +91,8 @@ world:
     - {min: [5, 5, 0], max: [6, 6, 1]}
   cylinders:
     - {center: [8, 2], radius: 0.3, z: [0, 2.5]}
+  arcs:
+    - {center: [5, 4], radius: 2, from_deg: -90, to_deg: 180, z: [0, 2]}
 trajectory:
   vehicle: ground
   waypoints:
@@ -133,6 +135,12 @@ odometry:
   EXPECT_EQ(s.world.cylinders[0].center, Eigen::Vector2d(8.0, 2.0));
   EXPECT_EQ(s.world.cylinders[0].radius, 0.3);
   EXPECT_EQ(s.world.cylinders[0].z1, 2.5);
+  ASSERT_EQ(s.world.arcs.size(), 1u);
+  EXPECT_EQ(s.world.arcs[0].center, Eigen::Vector2d(5.0, 4.0));
+  EXPECT_EQ(s.world.arcs[0].radius, 2.0);
+  EXPECT_EQ(s.world.arcs[0].from_deg, -90.0);
+  EXPECT_EQ(s.world.arcs[0].to_deg, 180.0);
+  EXPECT_EQ(s.world.arcs[0].z1, 2.0);
   EXPECT_EQ(s.waypoints[0].t, 1.0);
   EXPECT_EQ(s.lidar.beams, 720);
   EXPECT_EQ(s.lidar.fov_deg, 240.0);
@@ -473,7 +481,7 @@ icp:
 nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
 map: {keyframe_height: 0.1, keyframe_lateral: 0.25, keyframe_rotation: 0.3, min_point_spacing: 0.03}
 imu: {max_gap: 0.02, attitude_sigma: 0.01, heading_sigma: 0.05}
-degeneracy: {threshold: 0.04, min_sigma: 0.02}
+degeneracy: {threshold: 0.04, min_sigma: 0.02, hold_blind_yaw: false}
 motion:
   accel_noise_density: 0.01
   accel_bias_walk: 0.001
@@ -507,6 +515,8 @@ loop_closure:
   const SlamConfig c = load_slam_config(path);
   EXPECT_EQ(c.degeneracy.threshold, 0.04);
   EXPECT_EQ(c.degeneracy.min_sigma, 0.02);
+  EXPECT_FALSE(c.degeneracy.hold_blind_yaw);
+  EXPECT_TRUE(SlamConfig{}.degeneracy.hold_blind_yaw);
   EXPECT_EQ(c.motion.accel_noise_density, 0.01);
   EXPECT_EQ(c.motion.accel_bias_walk, 0.001);
   EXPECT_EQ(c.motion.initial_speed_sigma, 0.5);

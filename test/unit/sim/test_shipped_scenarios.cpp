@@ -93,7 +93,8 @@ TEST_P(GroundScenario, IsALevelDriveClearOfTheWalls) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, GroundScenario,
-                         ::testing::Values("ring_corridor", "long_corridor", "offices"),
+                         ::testing::Values("ring_corridor", "long_corridor", "offices",
+                                           "round_hall"),
                          [](const auto& info) { return info.param; });
 
 TEST(DemoScenario, IsAThreeMinuteFlightAtWalkingPace) {

@@ -25,6 +25,51 @@ World furnished_room() {
   return World(spec);
 }
 
+// The empty room with a round wall of radius 3 about (5, 4), open from 150 to 210 degrees (its
+// door faces -x), 0 to 2.5 m high.
+World round_hall() {
+  WorldSpec spec = testing::empty_room();
+  ArcWall arc;
+  arc.center = Eigen::Vector2d(5.0, 4.0);
+  arc.radius = 3.0;
+  arc.from_deg = -150.0;
+  arc.to_deg = 150.0;
+  arc.z0 = 0.0;
+  arc.z1 = 2.5;
+  spec.arcs.push_back(arc);
+  return World(spec);
+}
+
+TEST(World, ARoundWallIsHitFromInsideAndOutsideButNotThroughItsDoor) {
+  const World world = round_hall();
+  const Vec3 centre(5.0, 4.0, 1.0);
+  EXPECT_NEAR(world.cast_ray(centre, Vec3::UnitX(), 30.0), 3.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(centre, Vec3::UnitY(), 30.0), 3.0, kTolerance);
+  const Vec3 diagonal = Vec3(1.0, 1.0, 0.0).normalized();
+  EXPECT_NEAR(world.cast_ray(centre, diagonal, 30.0), 3.0, kTolerance);
+  // Out through the door to the room's west wall, 5 m away.
+  EXPECT_NEAR(world.cast_ray(centre, -Vec3::UnitX(), 30.0), 5.0, kTolerance);
+  // From outside, in the room's east part: the wall's outer side.
+  EXPECT_NEAR(world.cast_ray(Vec3(9.5, 4.0, 1.0), -Vec3::UnitX(), 30.0), 1.5, kTolerance);
+  // Over the wall's top: the ceiling.
+  EXPECT_NEAR(world.cast_ray(Vec3(5.0, 4.0, 2.0), Vec3(1.0, 0.0, 1.0).normalized(), 30.0),
+              std::sqrt(2.0), kTolerance);
+  // Beyond max_range: nothing.
+  EXPECT_EQ(world.cast_ray(centre, Vec3::UnitX(), 2.0), kInf);
+}
+
+TEST(World, TheDistanceToARoundWallIsToItsCircleOrItsNearerEnd) {
+  const World world = round_hall();
+  EXPECT_NEAR(world.distance_to_nearest_obstacle(Vec3(5.0, 4.0, 1.0)), 3.0, kTolerance);
+  EXPECT_NEAR(world.distance_to_nearest_obstacle(Vec3(9.0, 4.0, 1.0)), 1.0, kTolerance);
+  // In the door: the nearer end, at 150 degrees.
+  const Vec3 end(5.0 + 3.0 * std::cos(150.0 * M_PI / 180.0),
+                 4.0 + 3.0 * std::sin(150.0 * M_PI / 180.0), 1.0);
+  EXPECT_NEAR(world.distance_to_nearest_obstacle(Vec3(2.0, 4.0, 1.0)),
+              (end - Vec3(2.0, 4.0, 1.0)).norm(), kTolerance);
+  EXPECT_TRUE(world.is_free(Vec3(5.0, 4.0, 1.0)));
+}
+
 TEST(World, RayFromInsideHitsEachFaceOfTheRoom) {
   const World world(testing::empty_room());
   const Vec3 origin(2.0, 3.0, 1.0);
