@@ -7,36 +7,10 @@
 #include <optional>
 #include <utility>
 
+#include "core/PlanarPose.hpp"
+
 namespace uavslam::eval {
 namespace {
-
-struct PlanarMotion {
-  double x = 0.0, y = 0.0, theta = 0.0;
-};
-
-double normalised_angle(double angle) {
-  return std::atan2(std::sin(angle), std::cos(angle));
-}
-
-// a⁻¹ ⊕ b: the motion from a to b in the frame of a.
-PlanarMotion motion_between(const PlanarMotion& a, const PlanarMotion& b) {
-  const double dx = b.x - a.x;
-  const double dy = b.y - a.y;
-  const double c = std::cos(a.theta);
-  const double s = std::sin(a.theta);
-  return {c * dx + s * dy, -s * dx + c * dy, normalised_angle(b.theta - a.theta)};
-}
-
-// a ⊕ b: motion b applied after motion a.
-PlanarMotion compose(const PlanarMotion& a, const PlanarMotion& b) {
-  const double c = std::cos(a.theta);
-  const double s = std::sin(a.theta);
-  return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, normalised_angle(a.theta + b.theta)};
-}
-
-PlanarMotion inverse(const PlanarMotion& a) {
-  return motion_between(a, {});
-}
 
 // Estimated poses sorted by stamp, so that a stamp is found by value whatever the file order.
 class PoseLookup {
@@ -48,7 +22,7 @@ class PoseLookup {
   }
 
   // The pose whose stamp is nearest to t, if it is within the tolerance.
-  std::optional<PlanarMotion> at(double t) const {
+  std::optional<PlanarPose> at(double t) const {
     const auto after =
         std::lower_bound(poses_.begin(), poses_.end(), t,
                          [](const PlanarStamped& pose, double stamp) { return pose.t < stamp; });
@@ -59,7 +33,7 @@ class PoseLookup {
       if (!best || t - before.t < best->t - t) best = &before;
     }
     if (!best || std::abs(best->t - t) > tolerance_) return std::nullopt;
-    return PlanarMotion{best->x, best->y, best->theta};
+    return PlanarPose{best->x, best->y, best->theta};
   }
 
  private:
@@ -94,13 +68,13 @@ struct SubsetAccumulator {
 };
 
 // The relations as a graph: scan (its stamp in units of the tolerance) -> scan -> the motion.
-using RelationGraph = std::map<long long, std::map<long long, PlanarMotion>>;
+using RelationGraph = std::map<long long, std::map<long long, PlanarPose>>;
 
 RelationGraph graph_of(const std::vector<Relation>& relations, double stamp_tolerance) {
   const auto key = [&](double t) { return std::llround(t / stamp_tolerance); };
   RelationGraph graph;
   for (const Relation& r : relations) {
-    const PlanarMotion motion{r.x, r.y, r.yaw};
+    const PlanarPose motion{r.x, r.y, r.yaw};
     graph[key(r.t1)][key(r.t2)] = motion;
     graph[key(r.t2)][key(r.t1)] = inverse(motion);
   }
@@ -116,13 +90,13 @@ RelationErrors compare_to_relations(const std::vector<PlanarStamped>& estimate,
   std::vector<std::optional<Relation>> estimated;
   estimated.reserve(relations.size());
   for (const Relation& relation : relations) {
-    const std::optional<PlanarMotion> from = lookup.at(relation.t1);
-    const std::optional<PlanarMotion> to = lookup.at(relation.t2);
+    const std::optional<PlanarPose> from = lookup.at(relation.t1);
+    const std::optional<PlanarPose> to = lookup.at(relation.t2);
     if (!from || !to) {
       estimated.emplace_back();
       continue;
     }
-    const PlanarMotion motion = motion_between(*from, *to);  // δ̂ = x̂(t1)⁻¹ ⊕ x̂(t2)
+    const PlanarPose motion = motion_between(*from, *to);  // δ̂ = x̂(t1)⁻¹ ⊕ x̂(t2)
     estimated.push_back(Relation{relation.t1, relation.t2, motion.x, motion.y, motion.theta});
   }
   return compare_relation_estimates(relations, estimated);
@@ -148,7 +122,7 @@ RelationErrors compare_relation_estimates(const std::vector<Relation>& relations
       continue;
     }
     const Relation& e = *estimated[i];
-    const PlanarMotion error =
+    const PlanarPose error =
         motion_between({relation.x, relation.y, relation.yaw}, {e.x, e.y, e.yaw});  // δ⁻¹ ⊕ δ̂
     const double translation = std::hypot(error.x, error.y);
     const double rotation = std::abs(error.theta);
@@ -185,7 +159,7 @@ RelationClosures relation_triangle_closures(const std::vector<Relation>& relatio
         if (c <= b) continue;
         const auto ac = from_a.find(c);
         if (ac == from_a.end()) continue;
-        const PlanarMotion closure = motion_between(ac->second, compose(ab, bc));
+        const PlanarPose closure = motion_between(ac->second, compose(ab, bc));
         translation.push_back(std::hypot(closure.x, closure.y));
         rotation.push_back(std::abs(closure.theta));
         if (std::min({b - a, c - b}) < short_keys) short_leg.push_back(translation.back());

@@ -5,14 +5,14 @@
 #include <cstddef>
 
 #include "core/Angles.hpp"
+#include "core/PlanarPose.hpp"
 
 namespace uavslam::eval {
 namespace {
 
 Relation relation(const PlanarStamped& a, const PlanarStamped& b) {
-  const double c = std::cos(a.theta), s = std::sin(a.theta);
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  return {a.t, b.t, c * dx + s * dy, -s * dx + c * dy, wrap_angle(b.theta - a.theta)};
+  const PlanarPose m = motion_between({a.x, a.y, a.theta}, {b.x, b.y, b.theta});
+  return {a.t, b.t, m.x, m.y, m.theta};
 }
 
 // The scans one step apart along the path, the first included.

@@ -6,6 +6,7 @@
 
 #include "core/Angles.hpp"
 #include "core/Heading.hpp"
+#include "core/PlanarPose.hpp"
 #include "eval/TruthRelations.hpp"
 #include "io/CarmenWriter.hpp"
 #include "io/RelationsFile.hpp"
@@ -40,7 +41,7 @@ PlanarBeams planar_beams(const ScanGeometry& geometry) {
 }
 
 // The laser's mount on the robot as a planar pose.
-CarmenPose2 planar_mount(const Eigen::Isometry3d& mount) {
+PlanarPose planar_mount(const Eigen::Isometry3d& mount) {
   const Eigen::Quaterniond rotation(mount.rotation());
   if (tilt_of(rotation) > 1e-9) {
     throw std::invalid_argument("a CARMEN log needs a level scanner; the mount is tilted");
@@ -48,13 +49,8 @@ CarmenPose2 planar_mount(const Eigen::Isometry3d& mount) {
   return {mount.translation().x(), mount.translation().y(), heading_of(rotation)};
 }
 
-CarmenPose2 carmen_pose(const sim::PlanarPose& p) {
+CarmenPose2 carmen_pose(const PlanarPose& p) {
   return {p.x, p.y, p.theta};
-}
-
-CarmenPose2 compose(const CarmenPose2& a, const CarmenPose2& b) {
-  const double c = std::cos(a.theta), s = std::sin(a.theta);
-  return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, wrap_angle(a.theta + b.theta)};
 }
 
 std::vector<std::string> header(const sim::Scenario& scenario) {
@@ -83,8 +79,8 @@ SimulatedCarmenFiles write_simulated_carmen_log(const std::string& log_path,
   if (scans.empty()) return files;
   const ScanGeometry& geometry = *scans.front().geometry;
   const PlanarBeams beams = planar_beams(geometry);
-  const CarmenPose2 mount = planar_mount(geometry.mount);
-  const std::vector<sim::PlanarPose> odometry =
+  const PlanarPose mount = planar_mount(geometry.mount);
+  const std::vector<PlanarPose> odometry =
       sim::wheel_odometry(truth, scenario.odometry, scenario.seed);
 
   std::vector<CarmenMessage> messages;
@@ -110,9 +106,9 @@ SimulatedCarmenFiles write_simulated_carmen_log(const std::string& log_path,
     scan.max_range = geometry.max_range;
     scan.ranges = scans[i].ranges;
     scan.robot_pose = odom.pose;
-    scan.laser_pose = compose(odom.pose, mount);
+    scan.laser_pose = carmen_pose(compose(odometry[i], mount));
     messages.emplace_back(std::move(scan));
-    const sim::PlanarPose p = sim::planar_pose(truth[i]);
+    const PlanarPose p = planar_pose(truth[i]);
     true_path.push_back({stamp, p.x, p.y, p.theta});
     if (i > 0) {
       files.path_length += std::hypot(p.x - true_path[i - 1].x, p.y - true_path[i - 1].y);

@@ -11,17 +11,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/PlanarPose.hpp"
 #include "core/Types.hpp"
 #include "sim/Scenario.hpp"
 
 namespace uavslam::sim {
-
-struct PlanarPose {
-  double x = 0.0, y = 0.0, theta = 0.0;  // m, m, rad
-};
-
-// The body's true planar pose (x, y and the heading about the vertical).
-PlanarPose planar_pose(const Pose& pose);
 
 // One odometry pose per true pose, the first equal to it. The same seed gives the same poses.
 std::vector<PlanarPose> wheel_odometry(const std::vector<Pose>& truth,
