@@ -9,6 +9,7 @@
 // every axis); with split axes a level beam's pair informs only x-y and a floor beam's only z.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "core/SlamConfig.hpp"
 #include "core/WorldMap.hpp"
 #include "core/extensions/PlanarCorrection.hpp"
+#include "core/extensions/ScanInformation.hpp"
 
 namespace uavslam {
 
@@ -76,6 +78,9 @@ struct MatchResult {
   // Beyond the seed: the yaw the scan could not see was held at the prediction's and the scan
   // matched again without it (SlamPipeline::yaw_blind).
   bool yaw_held = false;
+  // What the pairs saw, the yaw estimated beside the translation, when SlamPipeline::yaw_blind
+  // already worked it out (the pose's analysis takes it from here rather than again).
+  std::optional<ScanInformation> information;
 };
 
 class ScanMatcher {

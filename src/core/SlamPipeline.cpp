@@ -354,12 +354,12 @@ ScanPoints SlamPipeline::scan_points(const ProjectedScan& projected,
 // Beyond the seed: a turn and a shift together leave the scan nearly unchanged (a round room seen
 // off its centre), so the yaw it found is where the ICP slid to (degeneracy.threshold, on the
 // yaw's information fraction, ScanInformation).
-bool SlamPipeline::yaw_blind(const MatchResult& match) const {
+bool SlamPipeline::yaw_blind(MatchResult& match) const {
   const SlamConfig::Degeneracy& options = config_.degeneracy;
   if (!options.hold_blind_yaw || options.threshold <= 0.0 || match.yaw == 0.0) return false;
-  const ScanInformation information =
-      scan_information(match.pairs, match.position, true, options.min_sigma);
-  return information.horizontal_pairs > 0 && information.yaw_fraction < options.threshold;
+  match.information = scan_information(match.pairs, match.position, true, options.min_sigma);
+  return match.information->horizontal_pairs > 0 &&
+         match.information->yaw_fraction < options.threshold;
 }
 
 // The match turned the scan as well as moving it: heading estimated in every scan, or a check
@@ -387,8 +387,10 @@ Vec3 SlamPipeline::keep_what_the_scan_saw(ScanReport& report, const MatchResult&
                                           Vec3& measured) {
   if (config_.degeneracy.threshold <= 0.0) return match.position;
   const bool measures_height = config_.icp.split_axes && sensor.has_vertical_beams();
-  const ScanInformation information = scan_information(
-      match.pairs, match.position, yaw_estimated(match), config_.degeneracy.min_sigma);
+  const ScanInformation information =
+      match.information ? *match.information
+                        : scan_information(match.pairs, match.position, yaw_estimated(match),
+                                           config_.degeneracy.min_sigma);
   report.seen = observability(information, config_.degeneracy.threshold, measures_height);
   Vec3 position = start.position + report.seen.observed * (match.position - start.position);
   if (const std::optional<double> along =

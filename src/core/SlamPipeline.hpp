@@ -168,7 +168,7 @@ class SlamPipeline {
   Eigen::Quaterniond corrected(const Eigen::Quaterniond& source_orientation) const;
   bool heading_check_due(const Pose& predicted) const;
   MatchResult match(const ScanPoints& points, const Pose& predicted);
-  bool yaw_blind(const MatchResult& match) const;
+  bool yaw_blind(MatchResult& match) const;
   bool heading_seen(const Eigen::Quaterniond& orientation) const;
   bool stale(double stamp) const;
   bool moved_enough_for_map_update(const Pose& pose) const;
