@@ -1016,19 +1016,35 @@ TEST_F(UavslamCli, OfflineOnACarmenLogAgreesWithRun) {
   EXPECT_FALSE(uavslam::io::read_pcd((dir / "offline" / "cloud.pcd").string()).empty());
 }
 
-// The relation error of `uavslam run --carmen LOG [options]` (config/slam_2d_logs.yaml) against
-// RELATIONS, over all relations: mean and largest (m); the run's summary.json.
+// A ground building of config/scenarios/ground written by `uavslam simulate --carmen` into dir:
+// its CARMEN log and its relations.
+struct GroundLog {
+  std::string log, relations;
+};
+GroundLog simulate_ground(const fs::path& dir, const std::string& building,
+                          const std::string& options = "") {
+  const GroundLog ground{(dir / (building + ".clf")).string(),
+                         (dir / (building + ".relations")).string()};
+  simulate(dir / "sim", source("config/scenarios/ground/" + building + ".yaml"), "config/seed.yaml",
+           options + " --carmen " + ground.log);
+  EXPECT_TRUE(fs::exists(ground.relations)) << ground.relations;
+  return ground;
+}
+
+// The relation error of `uavslam run --carmen` on a ground log [options]
+// (config/slam_2d_logs.yaml) against its relations, over all relations: mean and largest (m); the
+// run's summary.json.
 struct ScoredRun {
   double mean = 0.0, max = 0.0;
   nlohmann::json summary;
 };
-ScoredRun run_and_score(const std::string& log, const std::string& relations, const fs::path& out,
+ScoredRun run_and_score(const GroundLog& ground, const fs::path& out,
                         const std::string& options = "") {
   const CommandResult r =
-      run("run --quiet --carmen " + log + " --config " + source("config/slam_2d_logs.yaml") + " " +
-          options + " --out " + out.string());
+      run("run --quiet --carmen " + ground.log + " --config " + source("config/slam_2d_logs.yaml") +
+          " " + options + " --out " + out.string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  const CommandResult e = run("eval --json --relations " + relations + " --estimate " +
+  const CommandResult e = run("eval --json --relations " + ground.relations + " --estimate " +
                               (out / "estimate.txt").string());
   EXPECT_EQ(e.exit_code, 0) << e.output;
   const nlohmann::json scores = nlohmann::json::parse(e.output);
@@ -1042,20 +1058,16 @@ ScoredRun run_and_score(const std::string& log, const std::string& relations, co
 // outer walls lying on the central block's faces (3.5 m off across both corridors, scoring above
 // min_score), seen from the block's inside. Taken, that loop moved the map by 5 m.
 TEST_F(UavslamCli, ALoopThatLaysAWallOnTheFarSideOfABlockIsRefused) {
-  const std::string log = (dir / "ring.clf").string();
-  simulate(dir / "sim", source("config/scenarios/ground/ring_corridor.yaml"), "config/seed.yaml",
-           "--carmen " + log);
-  const std::string relations = (dir / "ring.relations").string();
-  ASSERT_TRUE(fs::exists(relations));
+  const GroundLog ring = simulate_ground(dir, "ring_corridor");
 
-  const ScoredRun checked = run_and_score(log, relations, dir / "checked");
+  const ScoredRun checked = run_and_score(ring, dir / "checked");
   EXPECT_GE(checked.summary["loops"]["rejected_back_to_back"].get<int>(), 1);
   EXPECT_GE(checked.summary["loops"]["accepted"].get<int>(), 1);
   EXPECT_LT(checked.mean, 0.03);
   EXPECT_LT(checked.max, 0.5);
 
   const ScoredRun unchecked =
-      run_and_score(log, relations, dir / "unchecked", "--set loop_closure.max_opposed_share=1");
+      run_and_score(ring, dir / "unchecked", "--set loop_closure.max_opposed_share=1");
   EXPECT_EQ(unchecked.summary["loops"]["rejected_back_to_back"].get<int>(), 0);
   EXPECT_GT(unchecked.max, 1.0);
 }
@@ -1064,18 +1076,15 @@ TEST_F(UavslamCli, ALoopThatLaysAWallOnTheFarSideOfABlockIsRefused) {
 // sees each niche's other face, and the loop search slides one face onto the other, 1 m along
 // the corridor, where the walls cannot tell. Taken, such loops bent the map by 2.4 m.
 TEST_F(UavslamCli, ALoopThatSlidesANichesFaceOntoItsOtherFaceIsRefused) {
-  const std::string log = (dir / "corridor.clf").string();
-  simulate(dir / "sim", source("config/scenarios/ground/long_corridor.yaml"), "config/seed.yaml",
-           "--carmen " + log);
-  const std::string relations = (dir / "corridor.relations").string();
+  const GroundLog corridor = simulate_ground(dir, "long_corridor");
 
-  const ScoredRun checked = run_and_score(log, relations, dir / "checked");
+  const ScoredRun checked = run_and_score(corridor, dir / "checked");
   EXPECT_GE(checked.summary["loops"]["rejected_back_to_back"].get<int>(), 1);
   EXPECT_LT(checked.mean, 0.02);
   EXPECT_LT(checked.max, 0.5);
 
   const ScoredRun unchecked =
-      run_and_score(log, relations, dir / "unchecked", "--set loop_closure.max_opposed_share=1");
+      run_and_score(corridor, dir / "unchecked", "--set loop_closure.max_opposed_share=1");
   EXPECT_GT(unchecked.max, 1.0);
 }
 
@@ -1083,18 +1092,14 @@ TEST_F(UavslamCli, ALoopThatSlidesANichesFaceOntoItsOtherFaceIsRefused) {
 // noise seed 6): a turn about the hall's centre and a shift are one to the scans, and the ICP's
 // yaw slid 115 degrees off in that seed. Held at the odometry's where the scan cannot see it.
 TEST_F(UavslamCli, AYawTheScanCannotSeeIsHeldAtTheOdometrys) {
-  const std::string log = (dir / "hall.clf").string();
-  simulate(dir / "sim", source("config/scenarios/ground/round_hall.yaml"), "config/seed.yaml",
-           "--seed 6 --carmen " + log);
-  const std::string relations = (dir / "hall.relations").string();
+  const GroundLog hall = simulate_ground(dir, "round_hall", "--seed 6");
 
-  const ScoredRun held = run_and_score(log, relations, dir / "held");
+  const ScoredRun held = run_and_score(hall, dir / "held");
   EXPECT_GT(held.summary["scans"]["yaw_held"].get<int>(), 0);
   EXPECT_LT(held.mean, 0.02);
   EXPECT_LT(held.max, 0.5);
 
-  const ScoredRun slid =
-      run_and_score(log, relations, dir / "slid", "--set degeneracy.hold_blind_yaw=false");
+  const ScoredRun slid = run_and_score(hall, dir / "slid", "--set degeneracy.hold_blind_yaw=false");
   EXPECT_EQ(slid.summary["scans"]["yaw_held"].get<int>(), 0);
   EXPECT_GT(slid.max, 1.0);
 }

@@ -1,5 +1,4 @@
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 #include <variant>
@@ -8,6 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "TempDirTest.hpp"
 #include "core/Angles.hpp"
 #include "io/CarmenLog.hpp"
 #include "io/CarmenWriter.hpp"
@@ -18,20 +18,7 @@
 namespace uavslam::io {
 namespace {
 
-class CarmenWriterTest : public testing::Test {
- protected:
-  ~CarmenWriterTest() override {
-    for (const std::string& path : paths_) std::remove(path.c_str());
-  }
-  std::string path(const std::string& name) {
-    const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
-    paths_.push_back(testing::TempDir() + "uavslam_" + test->name() + "_" + name);
-    return paths_.back();
-  }
-
- private:
-  std::vector<std::string> paths_;
-};
+using CarmenWriterTest = uavslam::test::TempDirTest;
 
 TEST_F(CarmenWriterTest, WhatIsWrittenReadsBack) {
   CarmenScan scan;
