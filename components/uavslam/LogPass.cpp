@@ -72,6 +72,8 @@ class Pass {
     ++result_.scans_in;
     result_.dead_reckoned += scan.report.dead_reckoned;
     result_.yaw_held += scan.report.yaw_held;
+    result_.moving_points += scan.report.moving_points;
+    result_.scans_with_moving_points += scan.report.moving_points > 0;
     result_.tracking.add(scan.tracking);
   }
 

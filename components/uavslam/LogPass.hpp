@@ -43,6 +43,10 @@ struct PassResult {
   std::size_t keyframes = 0;
   std::size_t dead_reckoned = 0;
   std::size_t yaw_held = 0;  // scans whose yaw the scan could not see: the odometry's kept
+  // Points set aside where earlier beams saw empty space (free_space.enabled), and in how many
+  // scans.
+  std::size_t moving_points = 0;
+  std::size_t scans_with_moving_points = 0;
   TrackingCounts tracking;
   std::size_t malformed = 0;
   std::vector<std::string> problems;  // descriptions of the malformed records the input kept

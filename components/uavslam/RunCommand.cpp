@@ -48,12 +48,14 @@ nlohmann::json to_json(const PassResult& run, const std::string& log_path,
   j["no_return_range"] =
       run.no_return_code ? nlohmann::json(run.no_return_code->range) : nlohmann::json(nullptr);
   j["problems"] = run.problems;
-  j["scans"] = {{"in", run.scans_in},
-                {"accepted", accepted},
-                {"rejected", run.scans_in - accepted},
-                {"rejected_by_reason", rejected_by_reason(run.outcomes)},
-                {"dead_reckoned", run.dead_reckoned},
-                {"yaw_held", run.yaw_held}};
+  j["scans"] = {
+      {"in", run.scans_in},
+      {"accepted", accepted},
+      {"rejected", run.scans_in - accepted},
+      {"rejected_by_reason", rejected_by_reason(run.outcomes)},
+      {"dead_reckoned", run.dead_reckoned},
+      {"yaw_held", run.yaw_held},
+      {"moving_points", {{"points", run.moving_points}, {"scans", run.scans_with_moving_points}}}};
   j["tracking"] = cli::to_json(run.tracking);
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};
   if (run.loops) j["loops"] = cli::to_json(*run.loops, run.backend_seconds);
@@ -77,6 +79,10 @@ void print_summary(std::ostream& out, const PassResult& run, const std::string& 
   if (run.yaw_held > 0) {
     out << "  yaw held          " << run.yaw_held
         << " scans blind to their turn (a round room) kept the odometry's\n";
+  }
+  if (run.moving_points > 0) {
+    out << "  moving points     " << run.moving_points << " in " << run.scans_with_moving_points
+        << " scans, where earlier beams saw empty space, left out (people, doors)\n";
   }
   print_tracking(out, run.tracking);
   out << "  malformed lines   " << run.malformed << "\n";

@@ -56,6 +56,23 @@ class SweptSensor {
 ProjectedScan project_scan(const Scan& scan, const Eigen::Quaterniond& orientation,
                            const SweepMotion& sweep = {});
 
+// Removes from `scan` the points (and their flags) for which drop(i) holds, keeping the others in
+// order; returns how many went.
+template <typename Drop>
+std::size_t remove_points(ProjectedScan& scan, Drop drop) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    if (drop(i)) continue;
+    scan.points[kept] = scan.points[i];
+    scan.vertical[kept] = scan.vertical[i];
+    ++kept;
+  }
+  const std::size_t removed = scan.points.size() - kept;
+  scan.points.resize(kept);
+  scan.vertical.resize(kept);
+  return removed;
+}
+
 // Keep every k-th point (seed: k = 5, 216 of 1080), starting with the first.
 template <typename T>
 std::vector<T> keep_every_kth(const std::vector<T>& items, int k) {

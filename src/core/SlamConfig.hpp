@@ -185,6 +185,18 @@ struct SlamConfig {
     double grid_step = 0.5;   // m between starts: under twice the pairing gate, so one converges
   } recovery;
 
+  // Beyond the seed: what moves (core/extensions/FreeSpace). A scan point where earlier beams saw
+  // empty space, with no surface within the ICP's pairing gate, is a person or a thing that came
+  // there: it is left out of the match and the map. For a level scanner (the 2D logs): the grid is
+  // of the horizontal plane.
+  struct FreeSpaceOptions {
+    bool enabled = false;
+    double resolution = 0.1;  // m, the grid's cells
+    double reach = 7.0;       // m: a beam marks the space free this far at most
+    int min_passes = 2;       // beams through a cell before anything was seen in it: it was empty
+    double memory = 10.0;     // s: only what the beams saw this lately (the map's frame drifts)
+  } free_space;
+
   // Beyond the seed: what the scan can see (core/extensions/ScanInformation). A direction whose
   // information fraction is under `threshold` is degenerate: the pose keeps the motion prior's
   // position along it instead of the match's, and the report says so.

@@ -58,7 +58,10 @@ SlamPipeline::SlamPipeline(const SlamConfig& config, const Vec3& initial_positio
       heading_rate_(config.imu.heading_drift_sigma),
       heading_anchor_(config.icp.heading == HeadingMode::EveryScan ? config.icp.heading_anchor
                                                                    : 0.0),
-      floor_level_(config.floor.level_window, config.floor.level_gate, config.floor.flatness) {
+      floor_level_(config.floor.level_window, config.floor.level_gate, config.floor.flatness),
+      free_space_(config.free_space.resolution, config.free_space.reach,
+                  config.free_space.min_passes, config.free_space.memory,
+                  std::max(config.icp.max_correspondence_distance, config.free_space.resolution)) {
   pose_.position = initial_position;
 }
 
@@ -88,8 +91,8 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   report.sweep = sweep_motion(scan, predicted);
   ProjectedScan projected = project(scan, orientation, report);
   // Step 2: every k-th point.
-  const std::vector<Vec3> normals = wall_normals(projected);
-  const ScanPoints points = scan_points(projected, normals);
+  std::vector<Vec3> normals = wall_normals(projected);
+  ScanPoints points = scan_points(projected, normals);
   report.points_used = points.points.size();
   if (report.points_used < kMinPoints) {
     report.outcome = ScanOutcome::TooFewPoints;
@@ -103,6 +106,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     height_from_floor(report, projected);
     report.pose = pose_;
     add_to_map(report, projected, normals);
+    remember_free_space(scan, projected.points);
     anchor_heading(report);
     return finish(report);
   }
@@ -113,7 +117,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   const Pose start{scan.stamp, pose_.position + predicted, orientation};
   const Eigen::Matrix3d prior = predicted_covariance(prediction, start.stamp);
   report.relocalised = stale(scan.stamp);
-  const MatchResult match =
+  MatchResult match =
       report.relocalised
           ? relocalise(matcher_, map_, points,
                        search_starts(start.position,
@@ -121,6 +125,20 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
                                      config_.recovery.grid_step),
                        config_.icp.heading == HeadingMode::EveryScan)
           : this->match(points, start);
+  // Beyond the seed: what the scan saw where the beams had seen empty space moved there; matched
+  // again without it (free_space.enabled). Judged at the match's pose, not the prediction's: a
+  // start a few decimetres off would put the walls themselves into the free space in front of them.
+  // Every return still goes into the free space: a wall taken for moved (a turn's first views
+  // placed a little off) is a surface again after a few scans.
+  Points returns = config_.free_space.enabled ? projected.points : Points{};
+  if (config_.free_space.enabled && !report.relocalised && match.outcome == ScanOutcome::Accepted) {
+    report.moving_points = set_aside_moving(projected, match.position, match.yaw, free_space_);
+    if (report.moving_points > 0) {
+      normals = wall_normals(projected);
+      points = scan_points(projected, normals);
+      match = this->match(points, start);
+    }
+  }
   report.outcome = match.outcome;
   report.error_before = match.error_before;
   report.error_after = match.error_after;
@@ -165,6 +183,10 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     heading_correction_ = wrap_angle(heading_correction_ + match.yaw);
     orientation = corrected(*source_orientation);
     projected = project(scan, orientation, report);
+    if (config_.free_space.enabled) {
+      returns = projected.points;
+      set_aside_moving(projected, position, 0.0, free_space_);
+    }
   }
 
   // Steps 6-7: report the new pose; a keyframe after enough motion.
@@ -175,6 +197,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   report.map_covariance = map_covariance(report.covariance);
   report.pose = pose_;
   if (moved_enough_for_map_update(pose_)) add_to_map(report, projected, normals);
+  remember_free_space(scan, returns);
   anchor_heading(report);
   return finish(report);
 }
@@ -328,6 +351,15 @@ ProjectedScan SlamPipeline::project(const Scan& scan, const Eigen::Quaterniond& 
     report.floor_returns = set_aside_floor_returns(projected, config_.scan.floor_margin);
   }
   return projected;
+}
+
+// Beyond the seed: the beams of a scan placed at the pose into what the scans have seen through
+// (extensions/FreeSpace), from the scanner's position.
+void SlamPipeline::remember_free_space(const Scan& scan, Points returns) {
+  if (!config_.free_space.enabled) return;
+  const Vec3 sensor = pose_.position + pose_.orientation * scan.geometry->mount.translation();
+  apply_transform(returns, pose_.position);
+  free_space_.add_scan(pose_.stamp, sensor, returns);
 }
 
 // Every beam's wall normal when the degeneracy analysis needs them (none otherwise): every
@@ -762,6 +794,7 @@ std::vector<MapKeyframe> SlamPipeline::moved_keyframes(const Eigen::Isometry3d& 
 void SlamPipeline::rebuild_map(const std::vector<MapKeyframe>& keyframes) {
   map_ = WorldMap(make_nearest_neighbour_index(config_.nearest_neighbour),
                   config_.map.min_point_spacing);
+  free_space_.clear();  // placed by the poses before the move
   std::vector<std::size_t> first_points;
   std::vector<Vec3> positions;
   for (const MapKeyframe& keyframe : keyframes) {

@@ -19,6 +19,7 @@
 #include "core/WorldMap.hpp"
 #include "core/extensions/BlindDirectionSearch.hpp"
 #include "core/extensions/FloorLevel.hpp"
+#include "core/extensions/FreeSpace.hpp"
 #include "core/extensions/HeadingAnchor.hpp"
 #include "core/extensions/HeadingRate.hpp"
 #include "core/extensions/MapUncertainty.hpp"
@@ -44,6 +45,9 @@ struct ScanReport {
   std::size_t points_used = 0;  // after subsampling
   std::size_t invalid_ranges = 0;
   std::size_t floor_returns = 0;  // level beams' points set aside as floor strikes (FloorReturns)
+  // Points set aside where earlier beams saw empty space: what moved there (free_space.enabled,
+  // extensions/FreeSpace).
+  std::size_t moving_points = 0;
   // How the body moved while the scanner swept, as the points were placed (scan.deskew; zero:
   // every beam from the pose at the stamp). Whoever places the scan again (the dense products)
   // places it alike.
@@ -178,6 +182,8 @@ class SlamPipeline {
   SweepMotion sweep_motion(const Scan& scan, const Vec3& predicted) const;
   ProjectedScan project(const Scan& scan, const Eigen::Quaterniond& orientation,
                         ScanReport& report) const;
+  // `returns`: every point of the scan, world-oriented about the body (as ProjectedScan's).
+  void remember_free_space(const Scan& scan, Points returns);
   ScanPoints scan_points(const ProjectedScan& projected, const std::vector<Vec3>& normals) const;
   MapError map_part(const ScanReport& report, const MatchResult& match) const;
   struct KeyframeError {
@@ -246,6 +252,7 @@ class SlamPipeline {
   HeadingRate heading_rate_;
   HeadingAnchor heading_anchor_;
   FloorLevel floor_level_;
+  FreeSpace free_space_;  // what the accepted scans' beams saw through (free_space.enabled)
   std::optional<double> drift_followed_until_;  // the stamp the drift was added up to
   std::optional<DriftCheck> drift_check_;       // this scan's, until the gate has judged it
   std::vector<double> keyframe_stamps_;         // one per keyframe, with

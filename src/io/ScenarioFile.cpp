@@ -61,8 +61,23 @@ sim::ArcWall read_arc(const YamlReader& reader) {
   return arc;
 }
 
+// A walking person: `path: [[x, y], ...]` (two points at least), `speed`, `start` (m along the
+// path at t = 0), `radius`, `height`.
+sim::Walker read_walker(const YamlReader& reader) {
+  reader.expect_keys_only({"path", "speed", "start", "radius", "height"});
+  sim::Walker walker;
+  const YamlReader path = reader.at("path");
+  for (const YamlReader& point : path.elements()) walker.path.push_back(point.as_vec2());
+  if (walker.path.size() < 2) path.fail_expected("a path of two points [x, y] at least");
+  walker.speed = reader.get_double_or("speed", walker.speed, NumberRange::positive());
+  walker.start = reader.get_double_or("start", walker.start, NumberRange::non_negative());
+  walker.radius = reader.get_double_or("radius", walker.radius, NumberRange::positive());
+  walker.height = reader.get_double_or("height", walker.height, NumberRange::positive());
+  return walker;
+}
+
 sim::WorldSpec read_world(const YamlReader& reader) {
-  reader.expect_keys_only({"room", "boxes", "cylinders", "arcs"});
+  reader.expect_keys_only({"room", "boxes", "cylinders", "arcs", "people"});
   sim::WorldSpec world;
   world.room = read_box(reader.at("room"));
   if (const auto boxes = reader.find("boxes")) {
@@ -75,6 +90,9 @@ sim::WorldSpec read_world(const YamlReader& reader) {
   }
   if (const auto arcs = reader.find("arcs")) {
     for (const YamlReader& arc : arcs->elements()) world.arcs.push_back(read_arc(arc));
+  }
+  if (const auto people = reader.find("people")) {
+    for (const YamlReader& walker : people->elements()) world.people.push_back(read_walker(walker));
   }
   return world;
 }

@@ -1,5 +1,6 @@
 #include "io/SlamConfigFile.hpp"
 
+#include <iterator>
 #include <vector>
 
 #include "io/YamlReader.hpp"
@@ -31,8 +32,10 @@ struct Parameter {
   std::string path() const { return std::string(section) + "." + key; }
 };
 
-const std::vector<Parameter>& parameters() {
-  static const std::vector<Parameter> table = {
+// The keys in two lists, the scan, matcher and map's and those of the extensions beyond them: as
+// one list this long, clang-format gives up laying its lambdas out.
+std::vector<Parameter> matcher_parameters() {
+  return {
       {"scan", "subsample_every",
        [](SlamConfig& c, const YamlReader& v) {
          c.scan.subsample_every = v.as_int(NumberRange::at_least(1));
@@ -175,6 +178,29 @@ const std::vector<Parameter>& parameters() {
       {"recovery", "grid_step",
        [](SlamConfig& c, const YamlReader& v) {
          c.recovery.grid_step = v.as_double(NumberRange::positive());
+       }},
+  };
+}
+
+std::vector<Parameter> extension_parameters() {
+  return {
+      {"free_space", "enabled",
+       [](SlamConfig& c, const YamlReader& v) { c.free_space.enabled = v.as_bool(); }},
+      {"free_space", "resolution",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.free_space.resolution = v.as_double(NumberRange::positive());
+       }},
+      {"free_space", "reach",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.free_space.reach = v.as_double(NumberRange::positive());
+       }},
+      {"free_space", "memory",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.free_space.memory = v.as_double(NumberRange::positive());
+       }},
+      {"free_space", "min_passes",
+       [](SlamConfig& c, const YamlReader& v) {
+         c.free_space.min_passes = v.as_int(NumberRange::between(1, 255));
        }},
       {"degeneracy", "threshold",
        [](SlamConfig& c, const YamlReader& v) {
@@ -323,6 +349,16 @@ const std::vector<Parameter>& parameters() {
          c.loop_closure.ambiguity_radius = v.as_double(NumberRange::positive());
        }},
   };
+}
+
+const std::vector<Parameter>& parameters() {
+  static const std::vector<Parameter> table = [] {
+    std::vector<Parameter> all = matcher_parameters();
+    std::vector<Parameter> more = extension_parameters();
+    all.insert(all.end(), std::make_move_iterator(more.begin()),
+               std::make_move_iterator(more.end()));
+    return all;
+  }();
   return table;
 }
 

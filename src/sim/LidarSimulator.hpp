@@ -20,8 +20,9 @@ class LidarSimulator {
 
   std::shared_ptr<const ScanGeometry> geometry() const { return geometry_; }
 
-  // One sweep from the sensor at body_pose * mount. A miss, or a noisy range beyond max_range,
-  // reads +infinity. Consumes one noise draw per beam, so the stream does not depend on the hits.
+  // One sweep from the sensor at body_pose * mount, taken at `stamp` (where the people are). A
+  // miss, or a noisy range beyond max_range, reads +infinity. Consumes one noise draw per beam, so
+  // the stream does not depend on the hits.
   Scan scan_at(const Pose& body_pose, double stamp, std::uint64_t sequence);
 
   // One sweep of a vehicle flying `trajectory`, its first beam at `taken`: each beam from where
@@ -34,8 +35,9 @@ class LidarSimulator {
   std::shared_ptr<const ScanGeometry> geometry_;
   double range_noise_std_;
 
-  // One beam's noisy range from the sensor at `sensor_in_world` (one noise draw, hit or not).
-  float range_of(const Eigen::Isometry3d& sensor_in_world, const Vec3& direction);
+  // One beam's noisy range from the sensor at `sensor_in_world`, fired `fired` s into the flight
+  // (one noise draw, hit or not).
+  float range_of(const Eigen::Isometry3d& sensor_in_world, const Vec3& direction, double fired);
   std::mt19937_64 random_;
   std::normal_distribution<double> standard_normal_{0.0, 1.0};
 };

@@ -33,11 +33,22 @@ struct ArcWall {
   double z0 = 0.0, z1 = 0.0;
 };
 
+// A person walking through the world: a vertical cylinder going to and fro along a path at a
+// steady pace (sim/Walker: where it is when). Scans see it; the map should not keep it.
+struct Walker {
+  std::vector<Eigen::Vector2d> path;  // at least two points; walked to the end and back
+  double speed = 1.2;                 // m/s
+  double start = 0.0;                 // m along the path at t = 0
+  double radius = 0.25;               // m
+  double height = 1.8;                // m, from the floor (z = 0)
+};
+
 struct WorldSpec {
   Box room;  // the inside of floor, ceiling and four walls
   std::vector<Box> boxes;
   std::vector<Cylinder> cylinders;
   std::vector<ArcWall> arcs;
+  std::vector<Walker> people;  // what moves: seen by the scans, not part of the map's truth
 };
 
 // What flies the trajectory: a multirotor tilts along its acceleration; a ground robot stays level.

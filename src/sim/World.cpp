@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "sim/Primitives.hpp"
+#include "sim/Walker.hpp"
 
 namespace uavslam::sim {
 
@@ -13,7 +14,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 World::World(const WorldSpec& spec) : spec_(spec) {}
 
-double World::cast_ray(const Vec3& origin, const Vec3& unit_dir, double max_range) const {
+double World::cast_ray(const Vec3& origin, const Vec3& unit_dir, double max_range,
+                       double time) const {
   const Ray ray(origin, unit_dir);
   const double room_exit = ray_exit_from_box(ray, spec_.room);
   double hit = room_exit <= max_range ? room_exit : kInf;
@@ -29,6 +31,13 @@ double World::cast_ray(const Vec3& origin, const Vec3& unit_dir, double max_rang
   }
   for (const ArcWall& arc : spec_.arcs) {
     const double t = ray_hit_arc(ray, arc, limit);
+    if (t < hit) hit = limit = t;
+  }
+  for (const Walker& walker : spec_.people) {
+    const Cylinder body = walker_at(walker, time);
+    // A person walking through the scanner hides nothing from it (the scan's origin inside).
+    if (cylinder_contains(body, origin)) continue;
+    const double t = ray_hit_cylinder(ray, body, limit);
     if (t < hit) hit = limit = t;
   }
   return hit;

@@ -93,6 +93,8 @@ world:
     - {center: [8, 2], radius: 0.3, z: [0, 2.5]}
   arcs:
     - {center: [5, 4], radius: 2, from_deg: -90, to_deg: 180, z: [0, 2]}
+  people:
+    - {path: [[1, 7], [9, 7], [9, 2]], speed: 1.5, start: 2, radius: 0.3, height: 1.7}
 trajectory:
   vehicle: ground
   waypoints:
@@ -141,6 +143,13 @@ odometry:
   EXPECT_EQ(s.world.arcs[0].from_deg, -90.0);
   EXPECT_EQ(s.world.arcs[0].to_deg, 180.0);
   EXPECT_EQ(s.world.arcs[0].z1, 2.0);
+  ASSERT_EQ(s.world.people.size(), 1u);
+  ASSERT_EQ(s.world.people[0].path.size(), 3u);
+  EXPECT_EQ(s.world.people[0].path[2], Eigen::Vector2d(9.0, 2.0));
+  EXPECT_EQ(s.world.people[0].speed, 1.5);
+  EXPECT_EQ(s.world.people[0].start, 2.0);
+  EXPECT_EQ(s.world.people[0].radius, 0.3);
+  EXPECT_EQ(s.world.people[0].height, 1.7);
   EXPECT_EQ(s.waypoints[0].t, 1.0);
   EXPECT_EQ(s.lidar.beams, 720);
   EXPECT_EQ(s.lidar.fov_deg, 240.0);
@@ -302,6 +311,16 @@ TEST_F(YamlFileTest, RoomMustHaveMinBelowMax) {
       write("room.yaml", minimal_scenario_with("max: [10, 8, 3]", "max: [10, 8, -3]"));
   EXPECT_THAT(config_error_of([&] { load_scenario(path); }),
               HasSubstr("key 'world.room': expected min < max on every axis"));
+}
+
+TEST_F(YamlFileTest, AWalkersPathHasTwoPointsAtLeast) {
+  const std::string path =
+      write("walker.yaml", minimal_scenario_with("max: [10, 8, 3]}",
+                                                 "max: [10, 8, 3]}\n  people:\n"
+                                                 "    - {path: [[1, 1]]}"));
+  EXPECT_THAT(
+      config_error_of([&] { load_scenario(path); }),
+      HasSubstr("key 'world.people[0].path': expected a path of two points [x, y] at least"));
 }
 
 TEST_F(YamlFileTest, WaypointTimesMustIncrease) {
@@ -482,6 +501,7 @@ nearest_neighbour: {index: exact, flann_trees: 8, flann_checks: 128}
 map: {keyframe_height: 0.1, keyframe_lateral: 0.25, keyframe_rotation: 0.3, min_point_spacing: 0.03}
 imu: {max_gap: 0.02, attitude_sigma: 0.01, heading_sigma: 0.05}
 degeneracy: {threshold: 0.04, min_sigma: 0.02, hold_blind_yaw: false}
+free_space: {enabled: true, resolution: 0.2, reach: 7, min_passes: 3, memory: 4}
 motion:
   accel_noise_density: 0.01
   accel_bias_walk: 0.001
@@ -517,6 +537,12 @@ loop_closure:
   EXPECT_EQ(c.degeneracy.min_sigma, 0.02);
   EXPECT_FALSE(c.degeneracy.hold_blind_yaw);
   EXPECT_TRUE(SlamConfig{}.degeneracy.hold_blind_yaw);
+  EXPECT_TRUE(c.free_space.enabled);
+  EXPECT_FALSE(SlamConfig{}.free_space.enabled);
+  EXPECT_EQ(c.free_space.resolution, 0.2);
+  EXPECT_EQ(c.free_space.reach, 7.0);
+  EXPECT_EQ(c.free_space.min_passes, 3);
+  EXPECT_EQ(c.free_space.memory, 4.0);
   EXPECT_EQ(c.motion.accel_noise_density, 0.01);
   EXPECT_EQ(c.motion.accel_bias_walk, 0.001);
   EXPECT_EQ(c.motion.initial_speed_sigma, 0.5);

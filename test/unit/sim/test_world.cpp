@@ -43,19 +43,19 @@ World round_hall() {
 TEST(World, ARoundWallIsHitFromInsideAndOutsideButNotThroughItsDoor) {
   const World world = round_hall();
   const Vec3 centre(5.0, 4.0, 1.0);
-  EXPECT_NEAR(world.cast_ray(centre, Vec3::UnitX(), 30.0), 3.0, kTolerance);
-  EXPECT_NEAR(world.cast_ray(centre, Vec3::UnitY(), 30.0), 3.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(centre, Vec3::UnitX(), 30.0, 0.0), 3.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(centre, Vec3::UnitY(), 30.0, 0.0), 3.0, kTolerance);
   const Vec3 diagonal = Vec3(1.0, 1.0, 0.0).normalized();
-  EXPECT_NEAR(world.cast_ray(centre, diagonal, 30.0), 3.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(centre, diagonal, 30.0, 0.0), 3.0, kTolerance);
   // Out through the door to the room's west wall, 5 m away.
-  EXPECT_NEAR(world.cast_ray(centre, -Vec3::UnitX(), 30.0), 5.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(centre, -Vec3::UnitX(), 30.0, 0.0), 5.0, kTolerance);
   // From outside, in the room's east part: the wall's outer side.
-  EXPECT_NEAR(world.cast_ray(Vec3(9.5, 4.0, 1.0), -Vec3::UnitX(), 30.0), 1.5, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(9.5, 4.0, 1.0), -Vec3::UnitX(), 30.0, 0.0), 1.5, kTolerance);
   // Over the wall's top: the ceiling.
-  EXPECT_NEAR(world.cast_ray(Vec3(5.0, 4.0, 2.0), Vec3(1.0, 0.0, 1.0).normalized(), 30.0),
+  EXPECT_NEAR(world.cast_ray(Vec3(5.0, 4.0, 2.0), Vec3(1.0, 0.0, 1.0).normalized(), 30.0, 0.0),
               std::sqrt(2.0), kTolerance);
   // Beyond max_range: nothing.
-  EXPECT_EQ(world.cast_ray(centre, Vec3::UnitX(), 2.0), kInf);
+  EXPECT_EQ(world.cast_ray(centre, Vec3::UnitX(), 2.0, 0.0), kInf);
 }
 
 TEST(World, TheDistanceToARoundWallIsToItsCircleOrItsNearerEnd) {
@@ -73,58 +73,58 @@ TEST(World, TheDistanceToARoundWallIsToItsCircleOrItsNearerEnd) {
 TEST(World, RayFromInsideHitsEachFaceOfTheRoom) {
   const World world(testing::empty_room());
   const Vec3 origin(2.0, 3.0, 1.0);
-  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitX(), 30.0), 8.0, kTolerance);
-  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitX(), 30.0), 2.0, kTolerance);
-  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitY(), 30.0), 5.0, kTolerance);
-  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitY(), 30.0), 3.0, kTolerance);
-  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitZ(), 30.0), 2.0, kTolerance);
-  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitZ(), 30.0), 1.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitX(), 30.0, 0.0), 8.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitX(), 30.0, 0.0), 2.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitY(), 30.0, 0.0), 5.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitY(), 30.0, 0.0), 3.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, Vec3::UnitZ(), 30.0, 0.0), 2.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(origin, -Vec3::UnitZ(), 30.0, 0.0), 1.0, kTolerance);
 }
 
 TEST(World, DiagonalRayHitsTheNearerFace) {
   const World world(testing::empty_room());
   const Vec3 direction = Vec3(1.0, 1.0, 0.0).normalized();
   // From (2, 3): the wall y = 8 is 5 m away along y, the wall x = 10 is 8 m away along x.
-  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 3.0, 1.0), direction, 30.0), 5.0 * std::sqrt(2.0),
+  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 3.0, 1.0), direction, 30.0, 0.0), 5.0 * std::sqrt(2.0),
               kTolerance);
 }
 
 TEST(World, SurfaceBeyondMaxRangeIsAMiss) {
   const World world(testing::empty_room());
-  EXPECT_EQ(world.cast_ray(Vec3(2.0, 3.0, 1.0), Vec3::UnitX(), 7.9), kInf);
-  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 3.0, 1.0), Vec3::UnitX(), 8.0), 8.0, kTolerance);
+  EXPECT_EQ(world.cast_ray(Vec3(2.0, 3.0, 1.0), Vec3::UnitX(), 7.9, 0.0), kInf);
+  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 3.0, 1.0), Vec3::UnitX(), 8.0, 0.0), 8.0, kTolerance);
 }
 
 TEST(World, RayHitsTheFrontFaceOfABox) {
   const World world = furnished_room();
-  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 2.0, 0.5), Vec3::UnitX(), 30.0), 4.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 2.0, 0.5), Vec3::UnitX(), 30.0, 0.0), 4.0, kTolerance);
   // From above: the top face at z = 1.
-  EXPECT_NEAR(world.cast_ray(Vec3(6.5, 2.0, 2.5), -Vec3::UnitZ(), 30.0), 1.5, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(6.5, 2.0, 2.5), -Vec3::UnitZ(), 30.0, 0.0), 1.5, kTolerance);
 }
 
 TEST(World, HorizontalRayPassingOverABoxHitsTheWall) {
   const World world = furnished_room();
-  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 2.0, 1.5), Vec3::UnitX(), 30.0), 8.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(2.0, 2.0, 1.5), Vec3::UnitX(), 30.0, 0.0), 8.0, kTolerance);
 }
 
 TEST(World, RayHitsTheSideOfACylinder) {
   const World world = furnished_room();
-  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.0, 1.0), Vec3::UnitX(), 30.0), 2.0, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.0, 1.0), Vec3::UnitX(), 30.0, 0.0), 2.0, kTolerance);
   // Off the axis by 0.3 m: the side is at x = 3 - sqrt(0.5^2 - 0.3^2) = 2.6.
-  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.3, 1.0), Vec3::UnitX(), 30.0), 2.1, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.3, 1.0), Vec3::UnitX(), 30.0, 0.0), 2.1, kTolerance);
 }
 
 TEST(World, RayHitsTheCapsOfACylinder) {
   const World world = furnished_room();
-  EXPECT_NEAR(world.cast_ray(Vec3(3.2, 6.1, 2.9), -Vec3::UnitZ(), 30.0), 0.9, kTolerance);
-  EXPECT_NEAR(world.cast_ray(Vec3(3.2, 6.1, 0.1), Vec3::UnitZ(), 30.0), 0.4, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(3.2, 6.1, 2.9), -Vec3::UnitZ(), 30.0, 0.0), 0.9, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(3.2, 6.1, 0.1), Vec3::UnitZ(), 30.0, 0.0), 0.4, kTolerance);
 }
 
 TEST(World, RayPassingBesideACylinderHitsTheWall) {
   const World world = furnished_room();
-  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.6, 1.0), Vec3::UnitX(), 30.0), 9.5, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.6, 1.0), Vec3::UnitX(), 30.0, 0.0), 9.5, kTolerance);
   // Above its top the cylinder is no obstacle either.
-  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.0, 2.5), Vec3::UnitX(), 30.0), 9.5, kTolerance);
+  EXPECT_NEAR(world.cast_ray(Vec3(0.5, 6.0, 2.5), Vec3::UnitX(), 30.0, 0.0), 9.5, kTolerance);
 }
 
 TEST(World, IsFreeInsideTheRoomOutsideObstacles) {
