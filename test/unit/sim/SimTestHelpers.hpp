@@ -19,8 +19,9 @@ inline Scenario shipped_scenario(const std::string& name) {
 
 inline const std::vector<std::string>& shipped_scenario_names() {
   static const std::vector<std::string> names = {
-      "demo",          "corridor",   "yaw_drift", "short",        "plain_corridor",
-      "flow_corridor", "late_scans", "two_rooms", "drift_change", "biased_corridor"};
+      "demo",           "corridor",        "yaw_drift",        "short",
+      "plain_corridor", "flow_corridor",   "late_scans",       "two_rooms",
+      "drift_change",   "biased_corridor", "corridor_follower"};
   return names;
 }
 

@@ -94,7 +94,7 @@ TEST_P(GroundScenario, IsALevelDriveClearOfTheWalls) {
 
 INSTANTIATE_TEST_SUITE_P(Shipped, GroundScenario,
                          ::testing::Values("ring_corridor", "long_corridor", "offices",
-                                           "round_hall", "pillar_hall"),
+                                           "round_hall", "pillar_hall", "large_ring", "busy_ring"),
                          [](const auto& info) { return info.param; });
 
 TEST(DemoScenario, IsAThreeMinuteFlightAtWalkingPace) {
