@@ -36,28 +36,29 @@ Eigen::Vector2d read_z_range(const YamlReader& reader) {
   return z;
 }
 
+// What a cylinder and a round wall share: `center: [x, y]`, `radius` > 0, `z: [z0, z1]`.
+template <typename Round>
+Round read_round(const YamlReader& reader) {
+  Round round;
+  round.center = reader.at("center").as_vec2();
+  round.radius = reader.get_double("radius", NumberRange::positive());
+  const Eigen::Vector2d z = read_z_range(reader);
+  round.z0 = z.x();
+  round.z1 = z.y();
+  return round;
+}
+
 sim::Cylinder read_cylinder(const YamlReader& reader) {
   reader.expect_keys_only({"center", "radius", "z"});
-  sim::Cylinder cylinder;
-  cylinder.center = reader.at("center").as_vec2();
-  cylinder.radius = reader.get_double("radius", NumberRange::positive());
-  const Eigen::Vector2d z = read_z_range(reader);
-  cylinder.z0 = z.x();
-  cylinder.z1 = z.y();
-  return cylinder;
+  return read_round<sim::Cylinder>(reader);
 }
 
 sim::ArcWall read_arc(const YamlReader& reader) {
   reader.expect_keys_only({"center", "radius", "from_deg", "to_deg", "z"});
-  sim::ArcWall arc;
-  arc.center = reader.at("center").as_vec2();
-  arc.radius = reader.get_double("radius", NumberRange::positive());
+  sim::ArcWall arc = read_round<sim::ArcWall>(reader);
   arc.from_deg = reader.get_double_or("from_deg", arc.from_deg);
   arc.to_deg = reader.get_double_or("to_deg", arc.to_deg,
                                     NumberRange::between(arc.from_deg, arc.from_deg + 360.0));
-  const Eigen::Vector2d z = read_z_range(reader);
-  arc.z0 = z.x();
-  arc.z1 = z.y();
   return arc;
 }
 
