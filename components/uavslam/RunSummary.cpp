@@ -122,8 +122,10 @@ nlohmann::json to_json(const backend::LoopCounts& loops, double seconds) {
 }
 
 namespace {
-// A tilted scanner's level beams set aside on the floor (scan.floor_margin), over the flight.
-struct FloorStrikes {
+// Points set aside over the flight, and the scans they were in: a tilted scanner's level beams
+// on the floor (ScanTrace::floor_returns, scan.floor_margin), what moved there
+// (ScanTrace::moving_points, free_space).
+struct SetAside {
   std::size_t points = 0;
   std::size_t scans = 0;
 };
@@ -137,13 +139,13 @@ std::size_t scans_with(const SlamRun& run, bool ScanTrace::*flag) {
   return count;
 }
 
-FloorStrikes floor_strikes(const SlamRun& run) {
-  FloorStrikes strikes;
+SetAside set_aside(const SlamRun& run, std::size_t ScanTrace::*count) {
+  SetAside total;
   for (const ScanTrace& t : run.trace) {
-    strikes.points += t.floor_returns;
-    strikes.scans += t.floor_returns > 0;
+    total.points += t.*count;
+    total.scans += t.*count > 0;
   }
-  return strikes;
+  return total;
 }
 }  // namespace
 
@@ -152,9 +154,13 @@ void print_summary(std::ostream& out, const RunSummary& s) {
   out << "uavslam simulate: " << s.scenario << (run.stopped_early ? " (stopped early)" : "")
       << "\n";
   print_scan_counts(out, run.scans_in, run.outcomes);
-  if (const FloorStrikes strikes = floor_strikes(run); strikes.points > 0) {
+  if (const SetAside strikes = set_aside(run, &ScanTrace::floor_returns); strikes.points > 0) {
     out << "  floor strikes     " << strikes.points << " points set aside in " << strikes.scans
         << " scans (level beams of the tilted scanner on the floor)\n";
+  }
+  if (const SetAside moving = set_aside(run, &ScanTrace::moving_points); moving.points > 0) {
+    out << "  moving points     " << moving.points << " in " << moving.scans
+        << " scans, where earlier beams saw empty space, left out (people, doors)\n";
   }
   if (const std::size_t floor = scans_with(run, &ScanTrace::height_from_floor); floor > 0) {
     out << "  floor level       the height measured from the take-off floor's level in " << floor
@@ -231,12 +237,14 @@ nlohmann::json to_json(const RunSummary& s, const SlamConfig& config) {
   nlohmann::json j;
   j["scenario"] = s.scenario;
   j["stopped_early"] = run.stopped_early;
-  const FloorStrikes strikes = floor_strikes(run);
+  const SetAside strikes = set_aside(run, &ScanTrace::floor_returns);
+  const SetAside moving = set_aside(run, &ScanTrace::moving_points);
   j["scans"] = {{"in", run.scans_in},
                 {"accepted", s.accepted()},
                 {"rejected", run.scans_in - s.accepted()},
                 {"rejected_by_reason", rejected},
                 {"floor_strikes", {{"points", strikes.points}, {"scans", strikes.scans}}},
+                {"moving_points", {{"points", moving.points}, {"scans", moving.scans}}},
                 {"height_from_floor", scans_with(run, &ScanTrace::height_from_floor)},
                 {"blind_fixed", scans_with(run, &ScanTrace::blind_fixed)}};
   j["map"] = {{"points", run.map.size()}, {"keyframes", run.keyframes}};

@@ -138,13 +138,26 @@ SlamRun run_slam(const SensorLog& log, const SlamConfig& config,
           SlamRun::AnchorTurn{report.frame_turn->yaw, scan.stamp - log.scans.front().stamp};
     }
     run.tracking.add(result.tracking);
-    run.trace.push_back({scan.stamp, report.outcome, report.points_used, report.error_before,
-                         report.error_after, report.iterations, report.map_updated,
-                         report.pose.position, truth, run.scan_seconds.back() * 1e3,
-                         report.seen.degenerate, report.seen.weakest_fraction,
-                         report.absolute_covariance().diagonal().cwiseSqrt(), report.prior_distance,
-                         result.tracking, report.floor_returns, report.height_from_floor, nees,
-                         report.blind_fixed});
+    run.trace.push_back({scan.stamp,
+                         report.outcome,
+                         report.points_used,
+                         report.error_before,
+                         report.error_after,
+                         report.iterations,
+                         report.map_updated,
+                         report.pose.position,
+                         truth,
+                         run.scan_seconds.back() * 1e3,
+                         report.seen.degenerate,
+                         report.seen.weakest_fraction,
+                         report.absolute_covariance().diagonal().cwiseSqrt(),
+                         report.prior_distance,
+                         result.tracking,
+                         report.floor_returns,
+                         report.height_from_floor,
+                         nees,
+                         report.blind_fixed,
+                         report.moving_points});
     if (progress && i % 400 == 0) progress(i, log.scans.size());
   }
   if (slam.finish()) {

@@ -58,6 +58,7 @@ struct ScanTrace {
   bool height_from_floor = false;  // the height measured from the floor's level (floor.level_gate)
   std::optional<eval::Nees> nees;  // of the reported position against the truth
   bool blind_fixed = false;        // a structure fixed the blind direction (search_window)
+  std::size_t moving_points = 0;   // points set aside as moved there (free_space)
 };
 
 struct SlamRun {

@@ -186,9 +186,10 @@ struct SlamConfig {
   } recovery;
 
   // Beyond the seed: what moves (core/extensions/FreeSpace). A scan point where earlier beams saw
-  // empty space, with no surface within the ICP's pairing gate, is a person or a thing that came
-  // there: it is left out of the match and the map. For a level scanner (the 2D logs): the grid is
-  // of the horizontal plane.
+  // empty space, with nothing that stood there from the first within the ICP's pairing gate, is a
+  // person or a thing that came there: it is left out of the match and the map. The grid is of the
+  // scanner's slab of the building (its height, give or take 0.3 m): a 2D log's plane, a UAV's
+  // level beams.
   struct FreeSpaceOptions {
     bool enabled = false;
     double resolution = 0.1;  // m, the grid's cells

@@ -106,7 +106,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     height_from_floor(report, projected);
     report.pose = pose_;
     add_to_map(report, projected, normals);
-    remember_free_space(scan, projected.points);
+    remember_free_space(scan, level_points(projected));
     anchor_heading(report);
     return finish(report);
   }
@@ -130,7 +130,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
   // start a few decimetres off would put the walls themselves into the free space in front of them.
   // Every return still goes into the free space: a wall taken for moved (a turn's first views
   // placed a little off) is a surface again after a few scans.
-  Points returns = config_.free_space.enabled ? projected.points : Points{};
+  Points returns = config_.free_space.enabled ? level_points(projected) : Points{};
   if (config_.free_space.enabled && !report.relocalised && match.outcome == ScanOutcome::Accepted) {
     report.moving_points = set_aside_moving(projected, match.position, match.yaw, free_space_);
     if (report.moving_points > 0) {
@@ -184,7 +184,7 @@ ScanReport SlamPipeline::process_scan(const Scan& scan, const MotionPrediction& 
     orientation = corrected(*source_orientation);
     projected = project(scan, orientation, report);
     if (config_.free_space.enabled) {
-      returns = projected.points;
+      returns = level_points(projected);
       set_aside_moving(projected, position, 0.0, free_space_);
     }
   }
@@ -767,6 +767,7 @@ void SlamPipeline::replace_map(const std::vector<MapKeyframe>& keyframes,
 // The vehicle moved with its map: `moved` takes the old frame to the new, a turn of `yaw`.
 void SlamPipeline::move_with_map(const Eigen::Isometry3d& moved, double yaw) {
   heading_correction_ = wrap_angle(heading_correction_ + yaw);
+  free_space_.move(moved);
   pose_.position = moved * pose_.position;
   pose_.orientation = yaw_rotation(yaw) * pose_.orientation;
   last_map_update_position_ = moved * last_map_update_position_;
@@ -794,7 +795,6 @@ std::vector<MapKeyframe> SlamPipeline::moved_keyframes(const Eigen::Isometry3d& 
 void SlamPipeline::rebuild_map(const std::vector<MapKeyframe>& keyframes) {
   map_ = WorldMap(make_nearest_neighbour_index(config_.nearest_neighbour),
                   config_.map.min_point_spacing);
-  free_space_.clear();  // placed by the poses before the move
   std::vector<std::size_t> first_points;
   std::vector<Vec3> positions;
   for (const MapKeyframe& keyframe : keyframes) {

@@ -11,9 +11,12 @@ namespace uavslam {
 
 namespace {
 
-// Scans with a return in a cell that make it a surface however it was first seen: half a second
-// of a 10 Hz scanner. A person walking by leaves returns in a cell for a scan or two.
+// Scans with a return in a cell, and the time they span (s), that make it a surface however it
+// was first seen. A person walking by holds a cell for as long as their body takes to pass it, a
+// few tenths of a second at walking pace: a 10 Hz scanner sees that in a scan or two, a 40 Hz one
+// in several (a wall stays).
 constexpr std::uint8_t kSurfaceScans = 5;
+constexpr float kSurfaceSeconds = 0.5f;
 
 // A beam frees the space up to a share of its range, and at least a distance (m), short of its
 // return: a beam that grazes a wall runs along it, through the cells in front of the surface, for
@@ -26,6 +29,12 @@ constexpr double kShortOfReturn = 0.5;
 // Crossings of a cell after its last return, per scan that saw something in it, that empty it
 // again (Cartographer's grids weigh one hit as five misses).
 constexpr int kPassesPerReturn = 5;
+
+// The slab of the building the grid is of: within this height (m) of the scanner. Its level beams
+// stay in it as the vehicle tilts a few degrees (0.2 m at 4 m and 3 degrees); a tilted beam that
+// strikes a table top below, under space the level beams crossed, is left out (a 2D log's beams
+// all lie in it).
+constexpr double kSlab = 0.3;
 
 // Moved points that make a small object one that moved: a person 10 m away is three beams of 1
 // degree.
@@ -58,6 +67,43 @@ std::size_t FreeSpace::cell_index(std::int64_t ix, std::int64_t iy) {
 
 std::int64_t FreeSpace::index(double coordinate) const {
   return static_cast<std::int64_t>(std::floor(coordinate / resolution_));
+}
+
+bool FreeSpace::recent(const Cell& c) const {
+  const bool passed = c.passes_before_return > 0 || c.passes_since_return > 0;
+  return (passed && now_ - c.last_pass <= memory_) ||
+         (c.scans_returned > 0 && now_ - c.last_return <= memory_);
+}
+
+// Two cells the move brought onto one: what either saw.
+void FreeSpace::merge(Cell& into, const Cell& c) {
+  const bool returned = into.scans_returned > 0;
+  into.passes_before_return = std::max(into.passes_before_return, c.passes_before_return);
+  into.passes_since_return = std::max(into.passes_since_return, c.passes_since_return);
+  into.scans_returned = std::max(into.scans_returned, c.scans_returned);
+  into.last_scan = std::max(into.last_scan, c.last_scan);
+  into.last_pass = std::max(into.last_pass, c.last_pass);
+  if (c.scans_returned > 0) {
+    into.first_return = returned ? std::min(into.first_return, c.first_return) : c.first_return;
+  }
+  into.last_return = std::max(into.last_return, c.last_return);
+}
+
+void FreeSpace::move(const Eigen::Isometry3d& moved) {
+  std::unordered_map<std::uint64_t, Chunk> before = std::move(chunks_);
+  clear();
+  for (const auto& [key, chunk] : before) {
+    const std::int64_t cx = static_cast<std::int32_t>(key >> 32);
+    const std::int64_t cy = static_cast<std::int32_t>(key & 0xffffffffu);
+    for (std::size_t i = 0; i < chunk.size(); ++i) {
+      if (!recent(chunk[i])) continue;
+      const auto ix = static_cast<std::int64_t>((cx << kChunkBits) + std::int64_t(i % kChunk));
+      const auto iy = static_cast<std::int64_t>((cy << kChunkBits) + std::int64_t(i / kChunk));
+      const Vec3 to =
+          moved * Vec3((double(ix) + 0.5) * resolution_, (double(iy) + 0.5) * resolution_, 0.0);
+      merge(cell(index(to.x()), index(to.y())), chunk[i]);
+    }
+  }
 }
 
 void FreeSpace::clear() {
@@ -108,8 +154,10 @@ void FreeSpace::pass(std::int64_t ix, std::int64_t iy) {
 
 void FreeSpace::mark_return(const Eigen::Vector2d& point) {
   Cell& c = cell(index(point.x()), index(point.y()));
+  if (c.scans_returned == 0) c.first_return = now_;
   if (c.last_scan != scans_ && c.scans_returned < 255) ++c.scans_returned;
   c.last_scan = scans_;
+  c.last_return = now_;
   c.passes_since_return = 0;
 }
 
@@ -146,8 +194,10 @@ void FreeSpace::add_scan(double stamp, const Vec3& sensor, const Points& returns
   if (scans_ == 0) first_stamp_ = stamp;
   ++scans_;
   now_ = static_cast<float>(stamp - first_stamp_);
+  sensor_height_ = sensor.z();
   const Eigen::Vector2d from = sensor.head<2>();
   for (const Vec3& p : returns) {
+    if (!in_slab(p)) continue;
     const Eigen::Vector2d to = p.head<2>();
     const double length = (to - from).norm();
     const double freed =
@@ -157,12 +207,13 @@ void FreeSpace::add_scan(double stamp, const Vec3& sensor, const Points& returns
   }
 }
 
-// A cell seen first holding a return, or holding returns scan after scan: a wall's cell that
+// A cell seen first holding a return, or holding returns for half a second: a wall's cell that
 // grazing beams crossed before the first beam struck it is one; a person who walked through is
 // not, nor a place a person stood and left (crossed since: empty again).
 bool FreeSpace::surface(const Cell& c) const {
   return c.scans_returned > 0 &&
-         (c.passes_before_return < min_passes_ || c.scans_returned >= kSurfaceScans);
+         (c.passes_before_return < min_passes_ ||
+          (c.scans_returned >= kSurfaceScans && now_ - c.first_return >= kSurfaceSeconds));
 }
 
 // Crossed by beams before anything was seen in it; lately: the map's frame drifts, and a place
@@ -171,22 +222,41 @@ bool FreeSpace::seen_empty(const Cell& c) const {
   return c.passes_before_return >= min_passes_ && now_ - c.last_pass <= memory_;
 }
 
-bool FreeSpace::surface_near(std::int64_t ix, std::int64_t iy) const {
+// Only what stood there when the beams first saw the place vouches for a point beside it: a thing
+// that came and stayed (a person who paused, or the trail a fast scanner sees a walker leave) is
+// a surface where it is, not a witness that its neighbour is a wall the pose placed a little off.
+bool FreeSpace::standing_near(std::int64_t ix, std::int64_t iy) const {
   for (std::int64_t y = iy - margin_cells_; y <= iy + margin_cells_; ++y) {
     for (std::int64_t x = ix - margin_cells_; x <= ix + margin_cells_; ++x) {
       const Cell* c = find(x, y);
-      if (c != nullptr && surface(*c)) return true;
+      if (c != nullptr && c->scans_returned > 0 && c->passes_before_return < min_passes_) {
+        return true;
+      }
     }
   }
   return false;
 }
 
+bool FreeSpace::in_slab(const Vec3& point) const {
+  return std::abs(point.z() - sensor_height_) <= kSlab;
+}
+
 bool FreeSpace::moved_there(const Vec3& point) const {
+  if (!in_slab(point)) return false;
   const std::int64_t ix = index(point.x());
   const std::int64_t iy = index(point.y());
   const Cell* c = find(ix, iy);
   if (c == nullptr || !seen_empty(*c) || surface(*c)) return false;
-  return !surface_near(ix, iy);
+  return !standing_near(ix, iy);
+}
+
+Points level_points(const ProjectedScan& scan) {
+  Points level;
+  level.reserve(scan.points.size());
+  for (std::size_t i = 0; i < scan.points.size(); ++i) {
+    if (!scan.vertical[i]) level.push_back(scan.points[i]);
+  }
+  return level;
 }
 
 std::vector<bool> moved_points(const ProjectedScan& scan, const Vec3& position, double yaw,
@@ -194,7 +264,7 @@ std::vector<bool> moved_points(const ProjectedScan& scan, const Vec3& position, 
   const Eigen::Matrix3d turn = yaw_rotation(yaw).toRotationMatrix();
   std::vector<bool> moved(scan.points.size());
   for (std::size_t i = 0; i < scan.points.size(); ++i) {
-    moved[i] = free_space.moved_there(position + turn * scan.points[i]);
+    moved[i] = !scan.vertical[i] && free_space.moved_there(position + turn * scan.points[i]);
   }
   // The scan cut into objects where the range jumps (beam order): a small object several of whose
   // points moved is a thing that moves, all of it (a person's back, walked into cells its body hid
@@ -210,7 +280,11 @@ std::vector<bool> moved_points(const ProjectedScan& scan, const Vec3& position, 
     const auto last = moved.begin() + std::ptrdiff_t(end);
     const bool small = (scan.points[end - 1] - scan.points[begin]).norm() <= kMaxMovingObject;
     const auto count = static_cast<std::size_t>(std::count(first, last, true));
-    std::fill(first, last, small && count >= kMinMovedPoints);
+    if (small && count >= kMinMovedPoints) {
+      for (std::size_t i = begin; i < end; ++i) moved[i] = !scan.vertical[i];
+    } else {
+      std::fill(first, last, false);
+    }
     begin = end;
   }
   return moved;
