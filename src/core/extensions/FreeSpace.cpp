@@ -97,8 +97,8 @@ void FreeSpace::move(const Eigen::Isometry3d& moved) {
     const std::int64_t cy = static_cast<std::int32_t>(key & 0xffffffffu);
     for (std::size_t i = 0; i < chunk.size(); ++i) {
       if (!recent(chunk[i])) continue;
-      const auto ix = static_cast<std::int64_t>((cx << kChunkBits) + std::int64_t(i % kChunk));
-      const auto iy = static_cast<std::int64_t>((cy << kChunkBits) + std::int64_t(i / kChunk));
+      const auto ix = static_cast<std::int64_t>(cx * kChunk + std::int64_t(i % kChunk));
+      const auto iy = static_cast<std::int64_t>(cy * kChunk + std::int64_t(i / kChunk));
       const Vec3 to =
           moved * Vec3((double(ix) + 0.5) * resolution_, (double(iy) + 0.5) * resolution_, 0.0);
       merge(cell(index(to.x()), index(to.y())), chunk[i]);
