@@ -80,10 +80,7 @@ void print_summary(std::ostream& out, const PassResult& run, const std::string& 
     out << "  yaw held          " << run.yaw_held
         << " scans blind to their turn (a round room) kept the odometry's\n";
   }
-  if (run.moving_points > 0) {
-    out << "  moving points     " << run.moving_points << " in " << run.scans_with_moving_points
-        << " scans, where earlier beams saw empty space, left out (people, doors)\n";
-  }
+  print_moving_points(out, run.moving_points, run.scans_with_moving_points);
   print_tracking(out, run.tracking);
   out << "  malformed lines   " << run.malformed << "\n";
   if (run.no_return_code) {

@@ -82,6 +82,12 @@ nlohmann::json rejected_by_reason(const OutcomeCounts& outcomes) {
   return rejected;
 }
 
+void print_moving_points(std::ostream& out, std::size_t points, std::size_t scans) {
+  if (points == 0) return;
+  out << "  moving points     " << points << " in " << scans
+      << " scans, where earlier beams saw empty space, left out (people, doors)\n";
+}
+
 void print_tracking(std::ostream& out, const TrackingCounts& tracking) {
   out << "  tracking          ";
   for (std::size_t k = 0; k < tracking.states.size(); ++k) {
@@ -158,10 +164,8 @@ void print_summary(std::ostream& out, const RunSummary& s) {
     out << "  floor strikes     " << strikes.points << " points set aside in " << strikes.scans
         << " scans (level beams of the tilted scanner on the floor)\n";
   }
-  if (const SetAside moving = set_aside(run, &ScanTrace::moving_points); moving.points > 0) {
-    out << "  moving points     " << moving.points << " in " << moving.scans
-        << " scans, where earlier beams saw empty space, left out (people, doors)\n";
-  }
+  const SetAside moving = set_aside(run, &ScanTrace::moving_points);
+  print_moving_points(out, moving.points, moving.scans);
   if (const std::size_t floor = scans_with(run, &ScanTrace::height_from_floor); floor > 0) {
     out << "  floor level       the height measured from the take-off floor's level in " << floor
         << " of " << s.accepted() << " matched scans\n";

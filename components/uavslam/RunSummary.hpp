@@ -41,6 +41,10 @@ void print_scan_counts(std::ostream& out, std::size_t scans_in, const OutcomeCou
 nlohmann::json rejected_by_reason(const OutcomeCounts& outcomes);
 std::size_t accepted_count(const OutcomeCounts& outcomes);
 
+// "  moving points     120 in 30 scans, where earlier beams saw empty space, left out (people,
+// doors)": what free_space set aside in a run or flight (no line when nothing was).
+void print_moving_points(std::ostream& out, std::size_t points, std::size_t scans);
+
 // "  tracking          7100 tracking, 80 degraded (degenerate 80), 0 lost" and its JSON.
 void print_tracking(std::ostream& out, const TrackingCounts& tracking);
 nlohmann::json to_json(const TrackingCounts& tracking);

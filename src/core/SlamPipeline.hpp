@@ -182,7 +182,7 @@ class SlamPipeline {
   SweepMotion sweep_motion(const Scan& scan, const Vec3& predicted) const;
   ProjectedScan project(const Scan& scan, const Eigen::Quaterniond& orientation,
                         ScanReport& report) const;
-  // `returns`: every point of the scan, world-oriented about the body (as ProjectedScan's).
+  // `returns`: the scan's level points, world-oriented about the body (as ProjectedScan's).
   void remember_free_space(const Scan& scan, Points returns);
   ScanPoints scan_points(const ProjectedScan& projected, const std::vector<Vec3>& normals) const;
   MapError map_part(const ScanReport& report, const MatchResult& match) const;
